@@ -1,0 +1,39 @@
+# Install rules and package configuration, so that find_package(tricell CONFIG),
+# add_subdirectory() and FetchContent all work. The build-tree export is always generated.
+include(CMakePackageConfigHelpers)
+include(GNUInstallDirs)
+
+set(TRICELL_CONFIG_DIR "${CMAKE_INSTALL_LIBDIR}/cmake/tricell")
+set(TRICELL_EXPORTED_TARGETS tricell_core)
+if(TARGET tricell_io)
+    list(APPEND TRICELL_EXPORTED_TARGETS tricell_io)
+endif()
+
+configure_package_config_file(
+    "${CMAKE_CURRENT_LIST_DIR}/tricell-config.cmake.in"
+    "${PROJECT_BINARY_DIR}/tricell-config.cmake"
+    INSTALL_DESTINATION "${TRICELL_CONFIG_DIR}")
+write_basic_package_version_file(
+    "${PROJECT_BINARY_DIR}/tricell-config-version.cmake"
+    COMPATIBILITY SameMinorVersion)
+
+export(TARGETS ${TRICELL_EXPORTED_TARGETS} NAMESPACE tricell::
+    FILE "${PROJECT_BINARY_DIR}/tricell-targets.cmake")
+
+if(TRICELL_INSTALL)
+    install(TARGETS ${TRICELL_EXPORTED_TARGETS} EXPORT tricell-targets
+        ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+        LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
+        RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR}
+        INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+    install(DIRECTORY "${PROJECT_SOURCE_DIR}/include/tricell"
+        DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+    install(FILES "${PROJECT_BINARY_DIR}/include/tricell/export.hpp"
+        DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}/tricell")
+    install(EXPORT tricell-targets NAMESPACE tricell::
+        DESTINATION "${TRICELL_CONFIG_DIR}")
+    install(FILES
+        "${PROJECT_BINARY_DIR}/tricell-config.cmake"
+        "${PROJECT_BINARY_DIR}/tricell-config-version.cmake"
+        DESTINATION "${TRICELL_CONFIG_DIR}")
+endif()

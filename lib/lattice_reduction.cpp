@@ -1,0 +1,48 @@
+#include "detail/lattice_reduction.hpp"
+
+#include <cmath>
+
+namespace tricell::detail {
+
+ReducedBasis reduce_basis(const Eigen::Matrix3d &basis, int count) {
+    ReducedBasis out;
+    out.count = count;
+    for (int k = 0; k < count; ++k) {
+        out.vectors.col(k) = basis.col(k);
+        out.transform(k, k) = 1;
+    }
+    // Each accepted step shortens a vector by a relative margin, so this terminates; the cap
+    // only guards against pathological floating-point input.
+    constexpr int max_sweeps = 200;
+    for (int sweep = 0; sweep < max_sweeps; ++sweep) {
+        bool changed = false;
+        for (int i = 0; i < count; ++i) {
+            for (int j = 0; j < count; ++j) {
+                if (i == j) {
+                    continue;
+                }
+                const double norm_j_sq = out.vectors.col(j).squaredNorm();
+                const double q = std::round(out.vectors.col(i).dot(out.vectors.col(j)) / norm_j_sq);
+                if (q == 0.0 || std::abs(q) > 1e9) {
+                    continue;
+                }
+                const Eigen::Vector3d candidate = out.vectors.col(i) - q * out.vectors.col(j);
+                if (candidate.squaredNorm() < out.vectors.col(i).squaredNorm() * (1 - 1e-12)) {
+                    out.vectors.col(i) = candidate;
+                    out.transform.col(i) -= static_cast<int>(q) * out.transform.col(j);
+                    changed = true;
+                }
+            }
+        }
+        if (!changed) {
+            break;
+        }
+    }
+    // Recompute from the integer transform so the vectors are exact lattice vectors.
+    for (int k = 0; k < count; ++k) {
+        out.vectors.col(k) = basis * out.transform.col(k).cast<double>();
+    }
+    return out;
+}
+
+} // namespace tricell::detail

@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# Installs the Debian packages tricell needs for building, testing, the command line, the
+# fixtures and the benchmarks. Idempotent: installs only what is missing, and runs
+# `apt-get update` once, only when something is missing. Nothing is downloaded at build time.
+set -euo pipefail
+
+packages=(
+    cmake g++ make
+    libeigen3-dev              # tricell::core
+    googletest libgtest-dev libgmock-dev
+    libbenchmark-dev
+    libsymspg-dev gemmi-dev tao-pegtl-dev libstb-dev   # tricell::io (spglib, gemmi)
+    python3-pymatgen python3-ase python3-numpy          # fixtures and peer benchmarks
+    clang-format
+)
+
+missing=()
+for package in "${packages[@]}"; do
+    if ! dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed"; then
+        missing+=("$package")
+    fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+    echo "install-deps: all ${#packages[@]} packages present"
+    exit 0
+fi
+
+sudo_cmd=()
+if [ "$(id -u)" -ne 0 ]; then
+    sudo_cmd=(sudo)
+fi
+echo "install-deps: installing ${missing[*]}"
+"${sudo_cmd[@]}" apt-get update -qq
+DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"

@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# The whole test suite, from a fresh clone: installs what is missing, builds tricell twice
+# (optimised, and with AddressSanitizer + UndefinedBehaviorSanitizer), runs every test in
+# both, and checks formatting. Exit status non-zero if anything fails.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+jobs="${TRICELL_JOBS:-2}"
+bash scripts/install-deps.sh
+
+echo "== format check"
+bash scripts/format-check.sh
+
+echo "== optimised build (build/)"
+cmake -S . -B build -DCMAKE_BUILD_TYPE=RelWithDebInfo
+cmake --build build -j "$jobs"
+ctest --test-dir build -j "$jobs" --output-on-failure
+
+echo "== sanitizer build (build-asan/)"
+cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DTRICELL_SANITIZE=ON \
+    -DTRICELL_BUILD_BENCHMARKS=OFF -DBUILD_SHARED_LIBS=ON
+cmake --build build-asan -j "$jobs"
+ctest --test-dir build-asan -j "$jobs" --output-on-failure
