@@ -2,5 +2,9 @@
 #pragma once
 
 #include "tricell/box.hpp"
+#include "tricell/cell_list.hpp"
 #include "tricell/error.hpp"
+#include "tricell/grid.hpp"
+#include "tricell/neighbor_list.hpp"
+#include "tricell/stencil.hpp"
 #include "tricell/types.hpp"

@@ -1,0 +1,54 @@
+// The stencil: which neighbouring cells, with which image shifts, a cell must be paired with.
+//
+// An entry is a cell offset delta. From a cell c, the offset reaches cell (c + delta) mod n
+// with image shift floor((c + delta) / n) along each periodic axis. That map from delta to
+// (neighbour cell, image shift) is one-to-one for a given c, so every periodic image of every
+// cell is visited exactly once: with one or two cells along an axis, the offsets -1 and +1
+// reach the same cell through different images, and with a cutoff spanning several boxes the
+// offsets -m..m visit the images of one cell one by one. Neither double counts nor misses.
+//
+// Offsets range over -m..m per axis (m = the grid's reach) and are pruned when the closest
+// approach of the two cells, measured in the real metric of the triclinic box (a small
+// box-constrained quadratic problem, solved exactly), is not below the search radius. The
+// pruning is symmetric in delta and -delta, so the half stencil stays exact.
+//
+// The full stencil holds every kept offset. The half stencil holds the zero offset (pairs inside
+// one cell, each unordered pair once) and the lexicographically positive offsets: for any pair
+// of atoms and image shift, exactly one of (i, j, S) and (j, i, -S) is found through it.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <vector>
+
+#include "tricell/box.hpp"
+#include "tricell/export.hpp"
+#include "tricell/grid.hpp"
+
+namespace tricell {
+
+using CellOffset = std::array<int, 3>;
+
+class TRICELL_API Stencil {
+  public:
+    Stencil() = default;
+    /// Every offset whose cells can hold a pair closer than the search radius.
+    static Stencil full(const CellGrid &grid, const Box &box, double search_radius);
+    /// The zero offset first, then the lexicographically positive half of full().
+    static Stencil half(const CellGrid &grid, const Box &box, double search_radius);
+
+    const std::vector<CellOffset> &offsets() const { return offsets_; }
+    std::size_t size() const { return offsets_.size(); }
+    bool is_half() const { return half_; }
+
+  private:
+    std::vector<CellOffset> offsets_;
+    bool half_ = false;
+};
+
+/// Squared closest approach |H u|^2 over u in the box lower <= u <= upper (fractional), solved
+/// exactly by enumerating the active sets of the box constraints.
+TRICELL_API double closest_approach_sq(const Eigen::Matrix3d &h, const Eigen::Vector3d &lower,
+                                       const Eigen::Vector3d &upper);
+
+} // namespace tricell

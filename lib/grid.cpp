@@ -1,0 +1,90 @@
+#include "tricell/grid.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include "tricell/error.hpp"
+
+namespace tricell {
+
+void GridOptions::validate() const {
+    if (!(std::isfinite(search_radius) && search_radius > 0)) {
+        detail::fail<InvalidArgument>("search radius must be > 0 (got ", search_radius, ")");
+    }
+    if (!(std::isfinite(cells_per_cutoff) && cells_per_cutoff >= 1)) {
+        detail::fail<InvalidArgument>("cells per cutoff must be >= 1 (got ", cells_per_cutoff, ")");
+    }
+    if (max_cells < 1) {
+        detail::fail<InvalidArgument>("max_cells must be >= 1 (got ", max_cells, ")");
+    }
+}
+
+namespace {
+
+// Cells that fit along an axis of real thickness `thickness` with target size h, at most
+// `limit` (so that cell counts stay representable).
+int cells_along(double thickness, double h, double limit) {
+    const double n = std::floor(thickness / h);
+    return n < 1 ? 1 : static_cast<int>(std::min(n, limit));
+}
+
+} // namespace
+
+CellGrid::CellGrid(const Box &box, const GridOptions &options, const Eigen::Vector3d &lower,
+                   const Eigen::Vector3d &upper)
+    : pbc_(box.periodicity()) {
+    options.validate();
+    const Eigen::Vector3d &widths = box.perpendicular_widths();
+    // Real thickness of the region the grid covers along each axis, and its fractional span.
+    Eigen::Vector3d thickness;
+    Eigen::Vector3d span;
+    for (int axis = 0; axis < 3; ++axis) {
+        if (pbc_[axis]) {
+            origin_[axis] = 0;
+            span[axis] = 1;
+        } else {
+            origin_[axis] = lower[axis];
+            span[axis] = std::max(upper[axis] - lower[axis], 0.0);
+        }
+        thickness[axis] = span[axis] * widths[axis];
+    }
+
+    const double max_cells = static_cast<double>(options.max_cells);
+    double h = options.search_radius / options.cells_per_cutoff;
+    for (;;) {
+        for (int axis = 0; axis < 3; ++axis) {
+            dims_[axis] = cells_along(thickness[axis], h, max_cells);
+        }
+        if (double(dims_[0]) * double(dims_[1]) * double(dims_[2]) <= max_cells) {
+            break;
+        }
+        capped_ = true;
+        h *= 1.1;
+    }
+
+    for (int axis = 0; axis < 3; ++axis) {
+        if (span[axis] > 0) {
+            cell_size_[axis] = span[axis] / dims_[axis];
+        } else {
+            cell_size_[axis] = 1; // all positions share one plane: any size, one cell
+        }
+        inverse_size_[axis] = 1.0 / cell_size_[axis];
+        // A pair within the radius is at most r / (w * cell_size) cell layers apart.
+        const double layers = options.search_radius / (widths[axis] * cell_size_[axis]);
+        if (!pbc_[axis]) {
+            // No images: the grid's end is the end.
+            reach_[axis] =
+                layers < dims_[axis] - 1 ? static_cast<int>(std::ceil(layers)) : dims_[axis] - 1;
+            continue;
+        }
+        if (!(layers < 1e6)) {
+            detail::fail<InvalidArgument>("search radius ", options.search_radius,
+                                          " spans more than a million cells along axis ", axis,
+                                          " (perpendicular width ", widths[axis], ")");
+        }
+        const int reach = static_cast<int>(std::ceil(layers));
+        reach_[axis] = reach;
+    }
+}
+
+} // namespace tricell

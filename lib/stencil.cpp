@@ -1,0 +1,132 @@
+#include "tricell/stencil.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include <Eigen/Cholesky>
+
+namespace tricell {
+
+double closest_approach_sq(const Eigen::Matrix3d &h, const Eigen::Vector3d &lower,
+                           const Eigen::Vector3d &upper) {
+    // The origin inside the box: the cells touch or overlap.
+    if ((lower.array() <= 0).all() && (upper.array() >= 0).all()) {
+        return 0;
+    }
+    const Eigen::Matrix3d gram = h.transpose() * h;
+    double best = std::numeric_limits<double>::infinity();
+    // state 0: at lower bound, 1: at upper bound, 2: free (stationary given the others).
+    for (int code = 0; code < 27; ++code) {
+        const int state[3] = {code % 3, (code / 3) % 3, code / 9};
+        Eigen::Vector3d u;
+        int free_axes[3];
+        int n_free = 0;
+        for (int k = 0; k < 3; ++k) {
+            if (state[k] == 2) {
+                free_axes[n_free++] = k;
+                u[k] = 0;
+            } else {
+                u[k] = state[k] == 0 ? lower[k] : upper[k];
+            }
+        }
+        if (n_free > 0) {
+            // Minimise over the free coordinates: G_FF u_F = -G_FX u_X.
+            Eigen::MatrixXd g_ff(n_free, n_free);
+            Eigen::VectorXd rhs(n_free);
+            for (int a = 0; a < n_free; ++a) {
+                rhs[a] = 0;
+                for (int k = 0; k < 3; ++k) {
+                    if (state[k] != 2) {
+                        rhs[a] -= gram(free_axes[a], k) * u[k];
+                    }
+                }
+                for (int b = 0; b < n_free; ++b) {
+                    g_ff(a, b) = gram(free_axes[a], free_axes[b]);
+                }
+            }
+            const Eigen::VectorXd solution = g_ff.ldlt().solve(rhs);
+            bool feasible = true;
+            for (int a = 0; a < n_free; ++a) {
+                const int k = free_axes[a];
+                u[k] = solution[a];
+                feasible = feasible && u[k] >= lower[k] && u[k] <= upper[k];
+            }
+            if (!feasible) {
+                continue;
+            }
+        }
+        best = std::min(best, (h * u).squaredNorm());
+    }
+    return best;
+}
+
+namespace {
+
+bool lexicographically_positive(const CellOffset &d) {
+    if (d[0] != 0) {
+        return d[0] > 0;
+    }
+    if (d[1] != 0) {
+        return d[1] > 0;
+    }
+    return d[2] > 0;
+}
+
+// Offsets within the reach whose cells can hold a pair closer than the radius. Cells of
+// fractional size f along an axis: offset delta covers fractional differences in
+// ((delta - 1) f, (delta + 1) f).
+std::vector<CellOffset> kept_offsets(const CellGrid &grid, const Box &box, double radius,
+                                     bool half) {
+    const std::array<int, 3> &m = grid.reach();
+    const Eigen::Vector3d &f = grid.cell_size();
+    const Eigen::Vector3d &w = box.perpendicular_widths();
+    const double radius_sq = radius * radius;
+    std::vector<CellOffset> kept;
+    if (half) {
+        kept.push_back({{0, 0, 0}});
+    }
+    for (int da = -m[0]; da <= m[0]; ++da) {
+        for (int db = -m[1]; db <= m[1]; ++db) {
+            for (int dc = -m[2]; dc <= m[2]; ++dc) {
+                const CellOffset d{{da, db, dc}};
+                if (half && !lexicographically_positive(d)) {
+                    continue;
+                }
+                Eigen::Vector3d lower, upper;
+                double slab_gap = 0; // cheap lower bound: the gap across one pair of faces
+                for (int k = 0; k < 3; ++k) {
+                    lower[k] = (d[k] - 1) * f[k];
+                    upper[k] = (d[k] + 1) * f[k];
+                    const double gap = std::max({lower[k], -upper[k], 0.0}) * w[k];
+                    slab_gap = std::max(slab_gap, gap);
+                }
+                if (slab_gap >= radius) {
+                    continue;
+                }
+                if (closest_approach_sq(box.matrix(), lower, upper) >= radius_sq) {
+                    continue;
+                }
+                kept.push_back(d);
+            }
+        }
+    }
+    return kept;
+}
+
+} // namespace
+
+Stencil Stencil::full(const CellGrid &grid, const Box &box, double search_radius) {
+    Stencil s;
+    s.offsets_ = kept_offsets(grid, box, search_radius, false);
+    s.half_ = false;
+    return s;
+}
+
+Stencil Stencil::half(const CellGrid &grid, const Box &box, double search_radius) {
+    Stencil s;
+    s.offsets_ = kept_offsets(grid, box, search_radius, true);
+    s.half_ = true;
+    return s;
+}
+
+} // namespace tricell

@@ -1,0 +1,247 @@
+// Property tests of the neighbour search against the brute-force oracle over thousands of
+// random cases with fixed seeds (the seed is printed on failure).
+#include <algorithm>
+#include <cstdint>
+#include <random>
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+
+#include "support/brute_force.hpp"
+#include "support/random_systems.hpp"
+#include "tricell/neighbor_list.hpp"
+
+using tricell::Box;
+using tricell::CellListKind;
+using tricell::NeighborList;
+using tricell::NeighborOptions;
+using tricell::testing::PairMap;
+using tricell::testing::RandomSystem;
+
+namespace {
+
+constexpr std::uint64_t case_count = 2400;
+
+double tolerance(const RandomSystem &sys) {
+    double scale = 1;
+    for (const auto &x : sys.positions) {
+        scale = std::max(scale, x.cwiseAbs().maxCoeff());
+    }
+    return 1e-10 * scale;
+}
+
+// Equal as sets of (i, j, S), with equal d and D; an entry missing from one side is allowed
+// only when its distance is within the tolerance of the cutoff (rounding decides it).
+void expect_same_pairs(const PairMap &expected, const PairMap &actual, double cutoff, double tol,
+                       const char *what) {
+    SCOPED_TRACE(what);
+    int reported = 0;
+    for (const auto &[key, value] : expected) {
+        const auto found = actual.find(key);
+        if (found == actual.end()) {
+            if (std::abs(value.distance - cutoff) > tol && reported++ < 5) {
+                const auto &[i, j, a, b, c] = key;
+                ADD_FAILURE() << "missing pair i=" << i << " j=" << j << " S=(" << a << "," << b
+                              << "," << c << ") d=" << value.distance;
+            }
+            continue;
+        }
+        if (std::abs(found->second.distance - value.distance) > tol ||
+            (found->second.vector - value.vector).norm() > tol) {
+            if (reported++ < 5) {
+                ADD_FAILURE() << "distance differs: " << found->second.distance << " vs "
+                              << value.distance;
+            }
+        }
+    }
+    for (const auto &[key, value] : actual) {
+        if (expected.count(key) == 0 && std::abs(value.distance - cutoff) > tol && reported++ < 5) {
+            const auto &[i, j, a, b, c] = key;
+            ADD_FAILURE() << "extra pair i=" << i << " j=" << j << " S=(" << a << "," << b << ","
+                          << c << ") d=" << value.distance;
+        }
+    }
+}
+
+NeighborOptions options_for(std::uint64_t seed, double cutoff) {
+    std::mt19937_64 rng(seed * 7919 + 1);
+    NeighborOptions o;
+    o.cutoff = cutoff;
+    o.quantities.vectors = true;
+    o.cells_per_cutoff = 1 + double(rng() % 3);
+    if (rng() % 5 == 0) {
+        o.max_cells = 1 + rng() % 8; // force the cap to bite
+    }
+    return o;
+}
+
+NeighborList run(const RandomSystem &sys, NeighborOptions o, bool half, CellListKind kind) {
+    o.half = half;
+    o.cell_list = kind;
+    return tricell::compute_neighbors(sys.box(), sys.positions, o);
+}
+
+} // namespace
+
+TEST(NeighborProperty, FullListEqualsBruteForce_RandomCases) {
+    for (std::uint64_t seed = 0; seed < case_count; ++seed) {
+        const RandomSystem sys = tricell::testing::random_system(seed);
+        SCOPED_TRACE(testing::Message() << "seed " << seed << " (" << sys.kind << "), N "
+                                        << sys.positions.size() << ", cutoff " << sys.cutoff);
+        const PairMap expected =
+            tricell::testing::brute_force_pairs(sys.box(), sys.positions, sys.cutoff);
+        const NeighborOptions o = options_for(seed, sys.cutoff);
+        const PairMap full = tricell::testing::to_map(run(sys, o, false, CellListKind::sorted));
+        expect_same_pairs(expected, full, sys.cutoff, tolerance(sys), "full vs oracle");
+        if (HasFailure()) {
+            return;
+        }
+    }
+}
+
+TEST(NeighborProperty, HalfListEqualsCanonicalFull_RandomCases) {
+    for (std::uint64_t seed = 0; seed < case_count; ++seed) {
+        const RandomSystem sys = tricell::testing::random_system(seed);
+        SCOPED_TRACE(testing::Message() << "seed " << seed << " (" << sys.kind << ")");
+        const NeighborOptions o = options_for(seed, sys.cutoff);
+        const NeighborList full_list = run(sys, o, false, CellListKind::sorted);
+        const NeighborList half_list = run(sys, o, true, CellListKind::sorted);
+        const PairMap full = tricell::testing::to_map(full_list);
+        const PairMap half = tricell::testing::to_map(half_list);
+        EXPECT_EQ(half.size(), half_list.size()) << "duplicates in the half list";
+        expect_same_pairs(tricell::testing::canonical_half(full), half, sys.cutoff, tolerance(sys),
+                          "half vs canonical(full)");
+        // Reciprocity: (i, j, S) in the full list iff (j, i, -S), with D negated.
+        for (const auto &[key, value] : full) {
+            const auto &[i, j, a, b, c] = key;
+            const auto reverse = full.find({j, i, -a, -b, -c});
+            ASSERT_NE(reverse, full.end());
+            EXPECT_LT((reverse->second.vector + value.vector).norm(), tolerance(sys));
+        }
+        if (HasFailure()) {
+            return;
+        }
+    }
+}
+
+TEST(NeighborProperty, LinkedAndSortedCellListsGiveIdenticalLists_RandomCases) {
+    for (std::uint64_t seed = 0; seed < case_count; seed += 2) {
+        const RandomSystem sys = tricell::testing::random_system(seed);
+        SCOPED_TRACE(testing::Message() << "seed " << seed << " (" << sys.kind << ")");
+        NeighborOptions o = options_for(seed, sys.cutoff);
+        o.sorted = true;
+        for (const bool half : {false, true}) {
+            const NeighborList sorted = run(sys, o, half, CellListKind::sorted);
+            const NeighborList linked = run(sys, o, half, CellListKind::linked);
+            ASSERT_EQ(sorted.i(), linked.i());
+            ASSERT_EQ(sorted.j(), linked.j());
+            ASSERT_EQ(sorted.shifts(), linked.shifts());
+            ASSERT_EQ(sorted.distances(), linked.distances()); // bit for bit
+        }
+    }
+}
+
+TEST(NeighborProperty, ResultDoesNotDependOnTheGrid_RandomCases) {
+    for (std::uint64_t seed = 1; seed < case_count; seed += 3) {
+        const RandomSystem sys = tricell::testing::random_system(seed);
+        SCOPED_TRACE(testing::Message() << "seed " << seed << " (" << sys.kind << ")");
+        NeighborOptions coarse;
+        coarse.cutoff = sys.cutoff;
+        coarse.cells_per_cutoff = 1;
+        coarse.max_cells = 1; // one cell: every pair found through images only
+        coarse.quantities.vectors = true;
+        NeighborOptions fine = coarse;
+        fine.cells_per_cutoff = 4;
+        fine.max_cells = 0;
+        for (const bool half : {false, true}) {
+            const PairMap a =
+                tricell::testing::to_map(run(sys, coarse, half, CellListKind::sorted));
+            const PairMap b = tricell::testing::to_map(run(sys, fine, half, CellListKind::linked));
+            expect_same_pairs(a, b, sys.cutoff, tolerance(sys), "one cell vs fine grid");
+        }
+        if (HasFailure()) {
+            return;
+        }
+    }
+}
+
+TEST(NeighborProperty, InvariantUnderLatticeTranslationOfAnyAtom_RandomCases) {
+    for (std::uint64_t seed = 2; seed < case_count; seed += 4) {
+        RandomSystem sys = tricell::testing::random_system(seed);
+        if (sys.positions.empty() || !sys.pbc.any()) {
+            continue;
+        }
+        SCOPED_TRACE(testing::Message() << "seed " << seed << " (" << sys.kind << ")");
+        std::mt19937_64 rng(seed);
+        const std::uint32_t moved = std::uint32_t(rng() % sys.positions.size());
+        Eigen::Vector3i t;
+        for (int k = 0; k < 3; ++k) {
+            t[k] = sys.pbc[k] ? int(rng() % 41) - 20 : 0;
+        }
+        const NeighborOptions o = options_for(seed, sys.cutoff);
+        const PairMap before = tricell::testing::to_map(run(sys, o, false, CellListKind::sorted));
+        sys.positions[moved] += sys.h * t.cast<double>();
+        const PairMap after = tricell::testing::to_map(run(sys, o, false, CellListKind::sorted));
+        // x_k + H t: pairs (k, j, S) become (k, j, S + t) and (i, k, S) become (i, k, S - t).
+        PairMap expected;
+        for (const auto &[key, value] : before) {
+            auto [i, j, a, b, c] = key;
+            Eigen::Vector3i s(a, b, c);
+            if (i == moved && j != moved) {
+                s += t;
+            } else if (j == moved && i != moved) {
+                s -= t;
+            }
+            expected[{i, j, s[0], s[1], s[2]}] = value;
+        }
+        expect_same_pairs(expected, after, sys.cutoff, tolerance(sys) * 100, "translated");
+        if (HasFailure()) {
+            return;
+        }
+    }
+}
+
+TEST(NeighborProperty, InvariantUnderRotationOfTheWholeSystem_RandomCases) {
+    for (std::uint64_t seed = 3; seed < case_count; seed += 5) {
+        RandomSystem sys = tricell::testing::random_system(seed);
+        SCOPED_TRACE(testing::Message() << "seed " << seed << " (" << sys.kind << ")");
+        std::mt19937_64 rng(seed);
+        std::normal_distribution<double> normal;
+        const Eigen::Matrix3d rotation =
+            Eigen::Quaterniond(
+                Eigen::Vector4d(normal(rng), normal(rng), normal(rng), normal(rng)).normalized())
+                .toRotationMatrix();
+        const NeighborOptions o = options_for(seed, sys.cutoff);
+        const PairMap before = tricell::testing::to_map(run(sys, o, true, CellListKind::sorted));
+        sys.h = rotation * sys.h;
+        for (auto &x : sys.positions) {
+            x = rotation * x;
+        }
+        PairMap expected;
+        for (const auto &[key, value] : before) {
+            expected[key] = {value.distance, rotation * value.vector};
+        }
+        const PairMap after = tricell::testing::to_map(run(sys, o, true, CellListKind::sorted));
+        expect_same_pairs(expected, after, sys.cutoff, tolerance(sys) * 100, "rotated");
+        if (HasFailure()) {
+            return;
+        }
+    }
+}
+
+TEST(NeighborProperty, VisitorSeesExactlyTheStoredPairs_RandomCases) {
+    for (std::uint64_t seed = 4; seed < case_count; seed += 7) {
+        const RandomSystem sys = tricell::testing::random_system(seed);
+        SCOPED_TRACE(testing::Message() << "seed " << seed << " (" << sys.kind << ")");
+        NeighborOptions o = options_for(seed, sys.cutoff);
+        o.half = seed % 2 == 0;
+        const PairMap stored =
+            tricell::testing::to_map(tricell::compute_neighbors(sys.box(), sys.positions, o));
+        PairMap visited;
+        tricell::for_each_pair(sys.box(), sys.positions, o, [&](const tricell::Pair &p) {
+            visited[{p.i, p.j, p.shift[0], p.shift[1], p.shift[2]}] = {p.distance(), p.vector};
+        });
+        ASSERT_EQ(stored.size(), visited.size());
+        expect_same_pairs(stored, visited, sys.cutoff, 0.0, "visitor vs stored");
+    }
+}

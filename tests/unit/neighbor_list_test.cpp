@@ -1,0 +1,205 @@
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "support/expect_throw_msg.hpp"
+#include "tricell/error.hpp"
+#include "tricell/neighbor_list.hpp"
+
+using tricell::Box;
+using tricell::NeighborList;
+using tricell::NeighborOptions;
+using tricell::Shift;
+
+namespace {
+NeighborOptions with_cutoff(double cutoff) {
+    NeighborOptions o;
+    o.cutoff = cutoff;
+    o.quantities.vectors = true;
+    return o;
+}
+const Box cube10 = Box::from_parameters(10, 10, 10, 90, 90, 90);
+} // namespace
+
+TEST(NeighborList, TwoAtomsAcrossTheBoundary) {
+    const std::vector<Eigen::Vector3d> x{{0.5, 5, 5}, {9.5, 5, 5}};
+    NeighborOptions o = with_cutoff(1.5);
+    o.sorted = true;
+    const NeighborList list = tricell::compute_neighbors(cube10, x, o);
+    ASSERT_EQ(list.size(), 2u);
+    EXPECT_EQ(list.i()[0], 0u);
+    EXPECT_EQ(list.j()[0], 1u);
+    EXPECT_EQ(list.shift(0), Shift(-1, 0, 0)); // x1 - x0 + H S = (-1, 0, 0)
+    EXPECT_DOUBLE_EQ(list.distances()[0], 1.0);
+    EXPECT_TRUE(list.vector(0).isApprox(Eigen::Vector3d(-1, 0, 0)));
+    EXPECT_EQ(list.i()[1], 1u);
+    EXPECT_EQ(list.shift(1), Shift(1, 0, 0));
+    EXPECT_EQ(list.offsets(), (std::vector<std::size_t>{0, 1, 2}));
+}
+
+TEST(NeighborList, ShiftIsRelativeToTheCallersPositionsFarOutside) {
+    // Atom 1 is 1000 boxes away along a: its pair with atom 0 needs S = (-1000 - 1, 0, 0).
+    const std::vector<Eigen::Vector3d> x{{0.5, 5, 5}, {9.5 + 10000, 5, 5}};
+    NeighborOptions o = with_cutoff(1.5);
+    o.half = true;
+    const NeighborList list = tricell::compute_neighbors(cube10, x, o);
+    ASSERT_EQ(list.size(), 1u);
+    EXPECT_EQ(list.shift(0), Shift(-1001, 0, 0));
+    const Eigen::Vector3d d = x[1] - x[0] + cube10.matrix() * Eigen::Vector3d(-1001, 0, 0);
+    EXPECT_NEAR(d.norm(), 1.0, 1e-9);
+    EXPECT_NEAR(list.distances()[0], 1.0, 1e-9);
+}
+
+TEST(NeighborList, OneAtomSeesItsOwnImages) {
+    const Box box = Box::from_parameters(2, 2, 2, 90, 90, 90);
+    const std::vector<Eigen::Vector3d> x{{0.3, 0.3, 0.3}};
+    NeighborList list = tricell::compute_neighbors(box, x, with_cutoff(2.5));
+    EXPECT_EQ(list.size(), 6u); // +-a, +-b, +-c
+    NeighborOptions o = with_cutoff(2.5);
+    o.half = true;
+    o.sorted = true;
+    list = tricell::compute_neighbors(box, x, o);
+    ASSERT_EQ(list.size(), 3u); // canonical: S lexicographically positive
+    EXPECT_EQ(list.shift(0), Shift(0, 0, 1));
+    EXPECT_EQ(list.shift(1), Shift(0, 1, 0));
+    EXPECT_EQ(list.shift(2), Shift(1, 0, 0));
+}
+
+TEST(NeighborList, HalfListOrientationIsCanonical) {
+    const std::vector<Eigen::Vector3d> x{{9.5, 5, 5}, {0.5, 5, 5}, {5, 5, 5}};
+    NeighborOptions o = with_cutoff(4.6);
+    o.half = true;
+    const NeighborList list = tricell::compute_neighbors(cube10, x, o);
+    ASSERT_EQ(list.size(), 3u);
+    for (std::size_t k = 0; k < list.size(); ++k) {
+        EXPECT_LT(list.i()[k], list.j()[k]);
+    }
+}
+
+TEST(NeighborList, CoincidentAtomsArePairsAtDistanceZero) {
+    const std::vector<Eigen::Vector3d> x{{1, 2, 3}, {1, 2, 3}};
+    const NeighborList list = tricell::compute_neighbors(cube10, x, with_cutoff(1.0));
+    ASSERT_EQ(list.size(), 2u);
+    EXPECT_EQ(list.distances()[0], 0.0);
+}
+
+TEST(NeighborList, EmptyInputGivesEmptyList) {
+    const std::vector<Eigen::Vector3d> none;
+    NeighborOptions o = with_cutoff(3.0);
+    o.sorted = true;
+    const NeighborList list = tricell::compute_neighbors(cube10, none, o);
+    EXPECT_TRUE(list.empty());
+    EXPECT_EQ(list.offsets(), std::vector<std::size_t>{0});
+}
+
+TEST(NeighborList, OpenSystemHasNoImages) {
+    const Box box = Box::from_parameters(3, 3, 3, 90, 90, 90, tricell::Periodicity::none());
+    const std::vector<Eigen::Vector3d> x{{0, 0, 0}, {2.9, 0, 0}, {-50, 0, 0}, {-51, 0, 0}};
+    const NeighborList list = tricell::compute_neighbors(box, x, with_cutoff(1.5));
+    ASSERT_EQ(list.size(), 2u); // only 2-3, both orientations; 0-1 only through an image
+    EXPECT_EQ(list.shift(0), Shift(0, 0, 0));
+}
+
+TEST(NeighborList, QuantitiesSubsetStoresOnlyWhatWasAsked) {
+    const std::vector<Eigen::Vector3d> x{{0.5, 5, 5}, {9.5, 5, 5}};
+    NeighborOptions o = with_cutoff(1.5);
+    o.quantities = tricell::Quantities{false, false, false};
+    o.sorted = true; // sorting needs S internally; it is still dropped from the output
+    const NeighborList list = tricell::compute_neighbors(cube10, x, o);
+    EXPECT_EQ(list.size(), 2u);
+    EXPECT_TRUE(list.shifts().empty());
+    EXPECT_TRUE(list.distances().empty());
+    EXPECT_TRUE(list.vectors().empty());
+}
+
+TEST(NeighborList, SortedOrderAndOffsets) {
+    std::vector<Eigen::Vector3d> x;
+    for (int k = 0; k < 40; ++k) {
+        x.emplace_back(std::fmod(k * 3.7, 10.0), std::fmod(k * 1.3, 10.0),
+                       std::fmod(k * 7.1, 10.0));
+    }
+    NeighborOptions o = with_cutoff(4.0);
+    o.sorted = true;
+    const NeighborList list = tricell::compute_neighbors(cube10, x, o);
+    ASSERT_EQ(list.offsets().size(), x.size() + 1);
+    for (std::size_t k = 1; k < list.size(); ++k) {
+        const auto key = [&](std::size_t p) {
+            const Shift s = list.shift(p);
+            return std::make_tuple(list.i()[p], list.j()[p], s[0], s[1], s[2]);
+        };
+        ASSERT_LT(key(k - 1), key(k));
+    }
+    for (std::uint32_t i = 0; i < x.size(); ++i) {
+        for (std::size_t p = list.offsets()[i]; p < list.offsets()[i + 1]; ++p) {
+            EXPECT_EQ(list.i()[p], i);
+        }
+    }
+}
+
+TEST(NeighborList, ReusedOutputIsOverwritten) {
+    NeighborList list;
+    const std::vector<Eigen::Vector3d> x{{0.5, 5, 5}, {9.5, 5, 5}};
+    tricell::compute_neighbors(cube10, x, with_cutoff(1.5), list);
+    tricell::compute_neighbors(cube10, x, with_cutoff(0.5), list);
+    EXPECT_TRUE(list.empty());
+    EXPECT_TRUE(list.distances().empty());
+}
+
+TEST(NeighborList, RejectsBadCutoff) {
+    const std::vector<Eigen::Vector3d> x{{0, 0, 0}};
+    EXPECT_THROW_MSG(tricell::compute_neighbors(cube10, x, with_cutoff(-1.5)),
+                     tricell::InvalidArgument, "cutoff must be > 0 (got -1.5)");
+    EXPECT_THROW_MSG(tricell::compute_neighbors(cube10, x, with_cutoff(0)),
+                     tricell::InvalidArgument, "cutoff must be > 0 (got 0)");
+    EXPECT_THROW_MSG(tricell::compute_neighbors(cube10, x, with_cutoff(std::nan(""))),
+                     tricell::InvalidArgument, "cutoff must be finite (got nan)");
+    EXPECT_THROW_MSG(
+        tricell::compute_neighbors(cube10, x, with_cutoff(std::numeric_limits<double>::infinity())),
+        tricell::InvalidArgument, "cutoff must be finite (got inf)");
+    NeighborOptions o = with_cutoff(1);
+    o.cells_per_cutoff = 0.5;
+    EXPECT_THROW_MSG(tricell::compute_neighbors(cube10, x, o), tricell::InvalidArgument,
+                     "cells_per_cutoff must be >= 1 (got 0.5)");
+}
+
+TEST(NeighborList, RejectsNonFinitePositionNamingIt) {
+    std::vector<Eigen::Vector3d> x(20, Eigen::Vector3d(1, 1, 1));
+    x[17].y() = std::numeric_limits<double>::quiet_NaN();
+    EXPECT_THROW_MSG(tricell::compute_neighbors(cube10, x, with_cutoff(1)),
+                     tricell::InvalidArgument, "position 17 is not finite");
+}
+
+TEST(NeighborList, RejectsPositionTooFarToWrap) {
+    const std::vector<Eigen::Vector3d> x{{0, 0, 0}, {1e12, 0, 0}};
+    EXPECT_THROW_MSG(tricell::compute_neighbors(cube10, x, with_cutoff(1)),
+                     tricell::InvalidArgument, "position 1: fractional coordinate a");
+}
+
+TEST(NeighborList, RefusesAbsurdPairCountBeforeAllocating) {
+    const std::vector<Eigen::Vector3d> x{{0, 0, 0}, {1, 1, 1}};
+    NeighborOptions o = with_cutoff(5000);
+    EXPECT_THROW_MSG(tricell::compute_neighbors(cube10, x, o), tricell::InvalidArgument,
+                     "more than max_pairs = 500000000");
+    o.cutoff = 30;
+    o.max_pairs = 100;
+    EXPECT_THROW_MSG(tricell::compute_neighbors(cube10, x, o), tricell::InvalidArgument,
+                     "estimated from the density");
+}
+
+TEST(NeighborList, ErrorLeavesOutputEmptyNotHalfWritten) {
+    // The estimate passes (uniform density), but the atoms are clustered: the actual count
+    // exceeds max_pairs while storing.
+    std::vector<Eigen::Vector3d> x(30, Eigen::Vector3d(1, 1, 1));
+    NeighborOptions o = with_cutoff(0.5);
+    o.max_pairs = 100;
+    NeighborList list;
+    const std::vector<Eigen::Vector3d> pair{{0, 0, 0}, {0.1, 0, 0}};
+    tricell::compute_neighbors(cube10, pair, with_cutoff(0.5), list);
+    ASSERT_EQ(list.size(), 2u);
+    EXPECT_THROW_MSG(tricell::compute_neighbors(cube10, x, o, list), tricell::InvalidArgument,
+                     "the neighbour list has more than max_pairs = 100 pairs");
+    EXPECT_TRUE(list.empty());
+    EXPECT_TRUE(list.distances().empty());
+}
