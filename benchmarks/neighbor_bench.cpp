@@ -28,7 +28,7 @@ System diamond_si(int cells) {
     for (int i = 0; i < cells; ++i) {
         for (int j = 0; j < cells; ++j) {
             for (int k = 0; k < cells; ++k) {
-                for (const auto &b : basis) {
+                for (const auto& b : basis) {
                     sys.positions.emplace_back(a * (i + b[0]), a * (j + b[1]), a * (k + b[2]));
                 }
             }
@@ -52,7 +52,7 @@ System random_triclinic(int atoms) {
 }
 
 // range(0): size parameter; range(1): half (0/1); range(2): cell list (0 sorted, 1 linked)
-template <System (*Make)(int), int Cutoff> void bm_stored(benchmark::State &state) {
+template <System (*Make)(int), int Cutoff> void bm_stored(benchmark::State& state) {
     const System sys = Make(static_cast<int>(state.range(0)));
     tricell::NeighborOptions options;
     options.cutoff = Cutoff;
@@ -70,7 +70,7 @@ template <System (*Make)(int), int Cutoff> void bm_stored(benchmark::State &stat
         benchmark::Counter(double(list.size()), benchmark::Counter::kIsIterationInvariantRate);
 }
 
-template <System (*Make)(int), int Cutoff> void bm_visitor(benchmark::State &state) {
+template <System (*Make)(int), int Cutoff> void bm_visitor(benchmark::State& state) {
     const System sys = Make(static_cast<int>(state.range(0)));
     tricell::NeighborOptions options;
     options.cutoff = Cutoff;
@@ -79,7 +79,7 @@ template <System (*Make)(int), int Cutoff> void bm_visitor(benchmark::State &sta
     for (auto _ : state) {
         pairs = 0;
         double sum = 0;
-        tricell::for_each_pair(sys.box, sys.positions, options, [&](const tricell::Pair &p) {
+        tricell::for_each_pair(sys.box, sys.positions, options, [&](const tricell::Pair& p) {
             ++pairs;
             sum += p.distance_sq;
         });
@@ -91,7 +91,7 @@ template <System (*Make)(int), int Cutoff> void bm_visitor(benchmark::State &sta
         benchmark::Counter(double(pairs), benchmark::Counter::kIsIterationInvariantRate);
 }
 
-void diamond_args(benchmark::internal::Benchmark *b) {
+void diamond_args(benchmark::internal::Benchmark* b) {
     for (const int cells : {2, 4, 8, 16}) {
         for (const int half : {0, 1}) {
             for (const int linked : {0, 1}) {
@@ -102,7 +102,7 @@ void diamond_args(benchmark::internal::Benchmark *b) {
     b->ArgNames({"cells", "half", "linked"})->Unit(benchmark::kMillisecond);
 }
 
-void random_args(benchmark::internal::Benchmark *b) {
+void random_args(benchmark::internal::Benchmark* b) {
     for (const int atoms : {1000, 10000, 100000}) {
         for (const int half : {0, 1}) {
             for (const int linked : {0, 1}) {
@@ -113,8 +113,8 @@ void random_args(benchmark::internal::Benchmark *b) {
     b->ArgNames({"atoms", "half", "linked"})->Unit(benchmark::kMillisecond);
 }
 
-void visitor_args(benchmark::internal::Benchmark *b, std::initializer_list<int> sizes,
-                  const char *name) {
+void visitor_args(benchmark::internal::Benchmark* b, std::initializer_list<int> sizes,
+                  const char* name) {
     for (const int size : sizes) {
         for (const int half : {0, 1}) {
             b->Args({size, half});
@@ -127,10 +127,10 @@ void visitor_args(benchmark::internal::Benchmark *b, std::initializer_list<int> 
 
 BENCHMARK(bm_stored<diamond_si, 5>)->Name("diamond_si/stored")->Apply(diamond_args);
 BENCHMARK(bm_stored<random_triclinic, 6>)->Name("random_triclinic/stored")->Apply(random_args);
-BENCHMARK(bm_visitor<diamond_si, 5>)->Name("diamond_si/visitor")->Apply([](auto *b) {
+BENCHMARK(bm_visitor<diamond_si, 5>)->Name("diamond_si/visitor")->Apply([](auto* b) {
     visitor_args(b, {8, 16}, "cells");
 });
-BENCHMARK(bm_visitor<random_triclinic, 6>)->Name("random_triclinic/visitor")->Apply([](auto *b) {
+BENCHMARK(bm_visitor<random_triclinic, 6>)->Name("random_triclinic/visitor")->Apply([](auto* b) {
     visitor_args(b, {10000, 100000}, "atoms");
 });
 

@@ -27,7 +27,7 @@ struct Input {
     std::vector<Atom> atoms;
 };
 
-Input read_input(const std::string &path) {
+Input read_input(const std::string& path) {
     std::ifstream file(path);
     if (!file) {
         throw tricell::ParseError(path, 0, "cannot open file");
@@ -83,18 +83,18 @@ Input read_input(const std::string &path) {
     return input;
 }
 
-void print(const Input &input) {
-    const tricell::Box &box = input.box;
+void print(const Input& input) {
+    const tricell::Box& box = input.box;
     const tricell::LatticeParameters p = box.parameters();
     std::printf("lattice a b c       %.6f %.6f %.6f\n", p.a, p.b, p.c);
     std::printf("angles alpha beta gamma %.4f %.4f %.4f\n", p.alpha, p.beta, p.gamma);
     std::printf("volume              %.6f\n", box.volume());
-    const Eigen::Vector3d &w = box.perpendicular_widths();
+    const Eigen::Vector3d& w = box.perpendicular_widths();
     std::printf("perpendicular widths %.6f %.6f %.6f\n", w[0], w[1], w[2]);
     std::printf("periodic            %c %c %c\n", box.periodic(0) ? 'T' : 'F',
                 box.periodic(1) ? 'T' : 'F', box.periodic(2) ? 'T' : 'F');
     std::printf("\n# atom fractional (a b c) wrapped into [0,1)\n");
-    for (const Atom &atom : input.atoms) {
+    for (const Atom& atom : input.atoms) {
         const tricell::WrappedFractional s = box.wrap(box.to_fractional(atom.position));
         std::printf("%-4s %.6f %.6f %.6f  image %d %d %d\n", atom.name.c_str(), s.wrapped[0],
                     s.wrapped[1], s.wrapped[2], s.image[0], s.image[1], s.image[2]);
@@ -113,14 +113,14 @@ void print(const Input &input) {
 
 } // namespace
 
-int main(int argc, char **argv) {
+int main(int argc, char** argv) {
     if (argc != 2) {
         std::fprintf(stderr, "usage: box_info FILE\n");
         return 2;
     }
     try {
         print(read_input(argv[1]));
-    } catch (const tricell::Error &e) {
+    } catch (const tricell::Error& e) {
         std::fprintf(stderr, "box_info: %s\n", e.what());
         return 1;
     }

@@ -13,7 +13,7 @@ namespace tricell {
 
 namespace {
 
-constexpr const char *axis_name[3] = {"a", "b", "c"};
+constexpr const char* axis_name[3] = {"a", "b", "c"};
 constexpr double pi = 3.14159265358979323846;
 // A box whose |det H| is below this fraction of |a||b||c| is treated as flat.
 constexpr double flatness_tolerance = 1e-10;
@@ -27,14 +27,14 @@ double radians(double degrees) {
     return degrees * pi / 180.0;
 }
 
-double angle_between(const Eigen::Vector3d &u, const Eigen::Vector3d &v) {
+double angle_between(const Eigen::Vector3d& u, const Eigen::Vector3d& v) {
     const double c = u.dot(v) / (u.norm() * v.norm());
     return degrees(std::acos(std::clamp(c, -1.0, 1.0)));
 }
 
 } // namespace
 
-Box::Box(const Eigen::Matrix3d &h, Periodicity pbc) : h_(h), pbc_(pbc) {
+Box::Box(const Eigen::Matrix3d& h, Periodicity pbc) : h_(h), pbc_(pbc) {
     for (int col = 0; col < 3; ++col) {
         for (int row = 0; row < 3; ++row) {
             if (!std::isfinite(h(row, col))) {
@@ -83,15 +83,15 @@ Box::Box(const Eigen::Matrix3d &h, Periodicity pbc) : h_(h), pbc_(pbc) {
     }
 }
 
-Box Box::from_columns(const Eigen::Matrix3d &h, Periodicity pbc) {
+Box Box::from_columns(const Eigen::Matrix3d& h, Periodicity pbc) {
     return Box(h, pbc);
 }
 
-Box Box::from_rows(const Eigen::Matrix3d &m, Periodicity pbc) {
+Box Box::from_rows(const Eigen::Matrix3d& m, Periodicity pbc) {
     return Box(m.transpose(), pbc);
 }
 
-Box Box::from_parameters(const LatticeParameters &p, Periodicity pbc) {
+Box Box::from_parameters(const LatticeParameters& p, Periodicity pbc) {
     const double lengths[3] = {p.a, p.b, p.c};
     for (int axis = 0; axis < 3; ++axis) {
         if (!(std::isfinite(lengths[axis]) && lengths[axis] > 0)) {
@@ -99,7 +99,7 @@ Box Box::from_parameters(const LatticeParameters &p, Periodicity pbc) {
                                           " must be > 0 (got ", lengths[axis], ")");
         }
     }
-    const char *angle_name[3] = {"alpha", "beta", "gamma"};
+    const char* angle_name[3] = {"alpha", "beta", "gamma"};
     const double angles[3] = {p.alpha, p.beta, p.gamma};
     for (int k = 0; k < 3; ++k) {
         if (!(std::isfinite(angles[k]) && angles[k] > 0 && angles[k] < 180)) {
@@ -132,7 +132,7 @@ Box Box::from_parameters(double a, double b, double c, double alpha, double beta
 
 Box Box::from_lammps(double lx, double ly, double lz, double xy, double xz, double yz,
                      Periodicity pbc) {
-    const char *name[3] = {"lx", "ly", "lz"};
+    const char* name[3] = {"lx", "ly", "lz"};
     const double length[3] = {lx, ly, lz};
     for (int k = 0; k < 3; ++k) {
         if (!(std::isfinite(length[k]) && length[k] > 0)) {
@@ -183,7 +183,7 @@ void Box::to_cartesian(PointsView fractional, MutablePointsView cartesian) const
     }
 }
 
-WrappedFractional Box::wrap(const Fractional &s) const {
+WrappedFractional Box::wrap(const Fractional& s) const {
     WrappedFractional out;
     out.wrapped = s;
     for (int axis = 0; axis < 3; ++axis) {
@@ -213,7 +213,7 @@ WrappedFractional Box::wrap(const Fractional &s) const {
     return out;
 }
 
-Cartesian Box::wrap(const Cartesian &r, Shift *image) const {
+Cartesian Box::wrap(const Cartesian& r, Shift* image) const {
     const WrappedFractional w = wrap(to_fractional(r));
     if (image != nullptr) {
         *image = w.image;
@@ -221,7 +221,7 @@ Cartesian Box::wrap(const Cartesian &r, Shift *image) const {
     return Cartesian(r - h_ * w.image.cast<double>());
 }
 
-MinimumImage Box::minimum_image(const Cartesian &d) const {
+MinimumImage Box::minimum_image(const Cartesian& d) const {
     MinimumImage best;
     best.vector = d;
     best.distance = d.norm();
@@ -232,7 +232,7 @@ MinimumImage Box::minimum_image(const Cartesian &d) const {
     // Babai rounding in the reduced basis B: coefficients of the projection of d onto span(B).
     const auto b = reduced_.leftCols(k);
     const Eigen::VectorXd t = reduced_gram_inv_.topLeftCorner(k, k) *
-                              (b.transpose() * static_cast<const Eigen::Vector3d &>(d));
+                              (b.transpose() * static_cast<const Eigen::Vector3d&>(d));
     Eigen::Vector3i rounded = Eigen::Vector3i::Zero();
     for (int l = 0; l < k; ++l) {
         if (!std::isfinite(t[l]) || std::abs(t[l]) > max_fractional) {
@@ -274,12 +274,12 @@ MinimumImage Box::minimum_image(const Cartesian &d) const {
     best.shift = reduced_to_h_ * reduced_shift;
     // Recompute from the integer shift so vector == d + H * shift up to one rounding.
     best.vector =
-        Cartesian(static_cast<const Eigen::Vector3d &>(d) + h_ * best.shift.cast<double>());
+        Cartesian(static_cast<const Eigen::Vector3d&>(d) + h_ * best.shift.cast<double>());
     best.distance = best.vector.norm();
     return best;
 }
 
-double Box::minimum_image_distance(const Cartesian &r_i, const Cartesian &r_j) const {
+double Box::minimum_image_distance(const Cartesian& r_i, const Cartesian& r_j) const {
     return minimum_image(Cartesian(r_j - r_i)).distance;
 }
 

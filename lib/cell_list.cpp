@@ -2,7 +2,7 @@
 
 namespace tricell {
 
-void LinkedCellList::build(const std::vector<std::uint32_t> &cell_of, std::size_t cell_count) {
+void LinkedCellList::build(const std::vector<std::uint32_t>& cell_of, std::size_t cell_count) {
     head_.assign(cell_count, end);
     next_.resize(cell_of.size());
     // Insert in reverse so each chain lists its atoms in increasing original index.
@@ -12,7 +12,7 @@ void LinkedCellList::build(const std::vector<std::uint32_t> &cell_of, std::size_
     }
 }
 
-void SortedCellList::build(const std::vector<std::uint32_t> &cell_of, std::size_t cell_count) {
+void SortedCellList::build(const std::vector<std::uint32_t>& cell_of, std::size_t cell_count) {
     start_.assign(cell_count + 1, 0);
     for (const std::uint32_t c : cell_of) {
         ++start_[c + 1];

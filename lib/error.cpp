@@ -3,7 +3,7 @@
 namespace tricell {
 
 namespace {
-std::string located(const std::string &file, std::size_t line, const std::string &message) {
+std::string located(const std::string& file, std::size_t line, const std::string& message) {
     if (line == 0) {
         return file + ": " + message;
     }
@@ -11,7 +11,7 @@ std::string located(const std::string &file, std::size_t line, const std::string
 }
 } // namespace
 
-ParseError::ParseError(std::string file, std::size_t line, const std::string &message)
+ParseError::ParseError(std::string file, std::size_t line, const std::string& message)
     : Error(located(file, line, message)), file_(std::move(file)), line_(line), message_(message) {}
 
 } // namespace tricell

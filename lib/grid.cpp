@@ -30,11 +30,11 @@ int cells_along(double thickness, double h, double limit) {
 
 } // namespace
 
-CellGrid::CellGrid(const Box &box, const GridOptions &options, const Eigen::Vector3d &lower,
-                   const Eigen::Vector3d &upper)
+CellGrid::CellGrid(const Box& box, const GridOptions& options, const Eigen::Vector3d& lower,
+                   const Eigen::Vector3d& upper)
     : pbc_(box.periodicity()) {
     options.validate();
-    const Eigen::Vector3d &widths = box.perpendicular_widths();
+    const Eigen::Vector3d& widths = box.perpendicular_widths();
     // Real thickness of the region the grid covers along each axis, and its fractional span.
     Eigen::Vector3d thickness;
     Eigen::Vector3d span;

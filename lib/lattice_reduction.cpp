@@ -4,7 +4,7 @@
 
 namespace tricell::detail {
 
-ReducedBasis reduce_basis(const Eigen::Matrix3d &basis, int count) {
+ReducedBasis reduce_basis(const Eigen::Matrix3d& basis, int count) {
     ReducedBasis out;
     out.count = count;
     for (int k = 0; k < count; ++k) {

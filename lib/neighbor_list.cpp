@@ -18,7 +18,7 @@ constexpr double search_margin = 1e-9;
 
 // Reorders v in place so that v[k] becomes old v[perm[k]], for `width` values per pair.
 template <class T>
-void gather(std::vector<T> &v, const std::vector<std::size_t> &perm, std::size_t width) {
+void gather(std::vector<T>& v, const std::vector<std::size_t>& perm, std::size_t width) {
     if (v.empty()) {
         return;
     }
@@ -54,7 +54,7 @@ void NeighborList::clear() {
     offsets_.clear();
 }
 
-void NeighborSearch::build(const Box &box, PointsView positions, const NeighborOptions &options) {
+void NeighborSearch::build(const Box& box, PointsView positions, const NeighborOptions& options) {
     options.validate();
     const std::size_t n = positions.size();
     if (n >= std::size_t(std::numeric_limits<std::int32_t>::max())) {
@@ -85,7 +85,7 @@ void NeighborSearch::build(const Box &box, PointsView positions, const NeighborO
         WrappedFractional w;
         try {
             w = box.wrap(box.to_fractional(Cartesian(positions[i])));
-        } catch (const InvalidArgument &e) {
+        } catch (const InvalidArgument& e) {
             detail::fail<InvalidArgument>("position ", i, ": ", e.what());
         }
         fractional[i] = w.wrapped;
@@ -125,6 +125,20 @@ void NeighborSearch::build(const Box &box, PointsView positions, const NeighborO
 
     stencil_ = options.half ? Stencil::half(grid_, box, search_radius)
                             : Stencil::full(grid_, box, search_radius);
+    // Rows of the stencil: for each (da, db), the hull of its dc (a superset of the kept
+    // offsets is always correct; in practice the kept dc already form an interval).
+    rows_.clear();
+    for (const CellOffset& d : stencil_.offsets()) {
+        auto row = std::find_if(rows_.begin(), rows_.end(), [&](const StencilRow& r) {
+            return r.da == d[0] && r.db == d[1];
+        });
+        if (row == rows_.end()) {
+            rows_.push_back(StencilRow{d[0], d[1], d[2], d[2]});
+        } else {
+            row->dc_lo = std::min(row->dc_lo, d[2]);
+            row->dc_hi = std::max(row->dc_hi, d[2]);
+        }
+    }
 
     // Neighbour-cell tables per axis.
     for (int k = 0; k < 3; ++k) {
@@ -180,80 +194,151 @@ void NeighborSearch::build(const Box &box, PointsView positions, const NeighborO
     }
 }
 
-void NeighborSearch::compute(NeighborList &out) const {
+namespace {
+
+// Appends pairs to the arrays of a NeighborList through raw pointers, growing them
+// geometrically (a push_back per field would re-check capacity five times per pair). Refuses to
+// grow past `limit` pairs (0: no limit).
+class PairSink {
+  public:
+    PairSink(std::vector<std::uint32_t>& i, std::vector<std::uint32_t>& j,
+             std::vector<std::int32_t>* shifts, std::vector<double>* distances,
+             std::vector<double>* vectors, std::size_t limit, std::size_t initial)
+        : i_(i), j_(j), shifts_(shifts), distances_(distances), vectors_(vectors),
+          limit_(limit) {
+        resize(limit_ != 0 ? std::min(initial, limit_) : initial);
+    }
+
+    void add(std::uint32_t i, std::uint32_t j, int sa, int sb, int sc, double dx, double dy,
+             double dz, double d_sq) {
+        if (size_ == capacity_) {
+            grow();
+        }
+        pi_[size_] = i;
+        pj_[size_] = j;
+        if (ps_ != nullptr) {
+            ps_[3 * size_] = sa;
+            ps_[3 * size_ + 1] = sb;
+            ps_[3 * size_ + 2] = sc;
+        }
+        if (pd_ != nullptr) {
+            pd_[size_] = std::sqrt(d_sq);
+        }
+        if (pv_ != nullptr) {
+            pv_[3 * size_] = dx;
+            pv_[3 * size_ + 1] = dy;
+            pv_[3 * size_ + 2] = dz;
+        }
+        ++size_;
+    }
+
+    std::size_t size() const { return size_; }
+    /// Trims the arrays to the pairs actually added.
+    void finish() { resize(size_); }
+
+  private:
+    void grow() {
+        if (limit_ != 0 && capacity_ >= limit_) {
+            detail::fail<InvalidArgument>("the neighbour list has more than max_pairs = ", limit_,
+                                          " pairs; raise NeighborOptions::max_pairs to allow it");
+        }
+        std::size_t next = std::max<std::size_t>(1024, capacity_ * 2);
+        if (limit_ != 0) {
+            next = std::min(next, limit_);
+        }
+        resize(next);
+    }
+
+    void resize(std::size_t capacity) {
+        capacity_ = capacity;
+        i_.resize(capacity);
+        j_.resize(capacity);
+        pi_ = i_.data();
+        pj_ = j_.data();
+        if (shifts_ != nullptr) {
+            shifts_->resize(3 * capacity);
+            ps_ = shifts_->data();
+        }
+        if (distances_ != nullptr) {
+            distances_->resize(capacity);
+            pd_ = distances_->data();
+        }
+        if (vectors_ != nullptr) {
+            vectors_->resize(3 * capacity);
+            pv_ = vectors_->data();
+        }
+    }
+
+    std::vector<std::uint32_t>& i_;
+    std::vector<std::uint32_t>& j_;
+    std::vector<std::int32_t>* shifts_;
+    std::vector<double>* distances_;
+    std::vector<double>* vectors_;
+    std::uint32_t* pi_ = nullptr;
+    std::uint32_t* pj_ = nullptr;
+    std::int32_t* ps_ = nullptr;
+    double* pd_ = nullptr;
+    double* pv_ = nullptr;
+    std::size_t size_ = 0, capacity_ = 0, limit_ = 0;
+};
+
+// Sorts a list by i, then j, then S (counting sort by i, then each atom's pairs by (j, S)) and
+// fills its CSR offsets.
+void sort_pairs(std::vector<std::uint32_t>& is, std::vector<std::uint32_t>& js,
+                std::vector<std::int32_t>& ss, std::vector<double>& ds, std::vector<double>& vs,
+                std::vector<std::size_t>& offsets, std::size_t atom_count) {
+    const std::size_t pairs = is.size();
+    offsets.assign(atom_count + 1, 0);
+    for (const std::uint32_t i : is) {
+        ++offsets[i + 1];
+    }
+    std::partial_sum(offsets.begin(), offsets.end(), offsets.begin());
+    std::vector<std::size_t> perm(pairs);
+    std::vector<std::size_t> cursor(offsets.begin(), offsets.end() - 1);
+    for (std::size_t k = 0; k < pairs; ++k) {
+        perm[cursor[is[k]]++] = k;
+    }
+    auto before = [&](std::size_t l, std::size_t r) {
+        if (js[l] != js[r]) {
+            return js[l] < js[r];
+        }
+        for (std::size_t a = 0; a < 3; ++a) {
+            if (ss[3 * l + a] != ss[3 * r + a]) {
+                return ss[3 * l + a] < ss[3 * r + a];
+            }
+        }
+        return false;
+    };
+    for (std::size_t i = 0; i < atom_count; ++i) {
+        std::sort(perm.begin() + std::ptrdiff_t(offsets[i]),
+                  perm.begin() + std::ptrdiff_t(offsets[i + 1]), before);
+    }
+    gather(is, perm, 1);
+    gather(js, perm, 1);
+    gather(ss, perm, 3);
+    gather(ds, perm, 1);
+    gather(vs, perm, 3);
+}
+
+} // namespace
+
+void NeighborSearch::compute(NeighborList& out) const {
     out.clear();
-    const Quantities &q = options_.quantities;
+    const Quantities& q = options_.quantities;
     const bool keep_shifts = q.shifts || options_.sorted; // sorting needs S
-    const std::size_t limit = options_.max_pairs;
     try {
         const double expected = std::min(estimated_pairs_ * 1.05 + 16, 1e8);
-        const std::size_t reserve = static_cast<std::size_t>(expected);
-        out.i_.reserve(reserve);
-        out.j_.reserve(reserve);
-        if (keep_shifts) {
-            out.shifts_.reserve(3 * reserve);
-        }
-        if (q.distances) {
-            out.distances_.reserve(reserve);
-        }
-        if (q.vectors) {
-            out.vectors_.reserve(3 * reserve);
-        }
-        traverse([&](std::uint32_t i, std::uint32_t j, int sa, int sb, int sc, double dx, double dy,
-                     double dz, double d_sq) {
-            if (limit != 0 && out.i_.size() >= limit) {
-                detail::fail<InvalidArgument>(
-                    "the neighbour list has more than max_pairs = ", limit,
-                    " pairs; raise NeighborOptions::max_pairs to "
-                    "allow it");
-            }
-            out.i_.push_back(i);
-            out.j_.push_back(j);
-            if (keep_shifts) {
-                out.shifts_.insert(out.shifts_.end(), {sa, sb, sc});
-            }
-            if (q.distances) {
-                out.distances_.push_back(std::sqrt(d_sq));
-            }
-            if (q.vectors) {
-                out.vectors_.insert(out.vectors_.end(), {dx, dy, dz});
-            }
-        });
+        PairSink sink(out.i_, out.j_, keep_shifts ? &out.shifts_ : nullptr,
+                      q.distances ? &out.distances_ : nullptr, q.vectors ? &out.vectors_ : nullptr,
+                      options_.max_pairs, static_cast<std::size_t>(expected));
+        traverse(
+            [&](std::uint32_t i, std::uint32_t j, int sa, int sb, int sc, double dx, double dy,
+                double dz, double d_sq) { sink.add(i, j, sa, sb, sc, dx, dy, dz, d_sq); },
+            0, grid_.cell_count());
+        sink.finish();
         if (options_.sorted) {
-            // Counting sort by i, then each atom's pairs by (j, S).
-            const std::size_t pairs = out.i_.size();
-            out.offsets_.assign(atom_count_ + 1, 0);
-            for (const std::uint32_t i : out.i_) {
-                ++out.offsets_[i + 1];
-            }
-            std::partial_sum(out.offsets_.begin(), out.offsets_.end(), out.offsets_.begin());
-            std::vector<std::size_t> perm(pairs);
-            std::vector<std::size_t> cursor(out.offsets_.begin(), out.offsets_.end() - 1);
-            for (std::size_t k = 0; k < pairs; ++k) {
-                perm[cursor[out.i_[k]]++] = k;
-            }
-            const std::vector<std::uint32_t> &js = out.j_;
-            const std::vector<std::int32_t> &ss = out.shifts_;
-            auto before = [&](std::size_t l, std::size_t r) {
-                if (js[l] != js[r]) {
-                    return js[l] < js[r];
-                }
-                for (std::size_t a = 0; a < 3; ++a) {
-                    if (ss[3 * l + a] != ss[3 * r + a]) {
-                        return ss[3 * l + a] < ss[3 * r + a];
-                    }
-                }
-                return false;
-            };
-            for (std::size_t i = 0; i < atom_count_; ++i) {
-                std::sort(perm.begin() + std::ptrdiff_t(out.offsets_[i]),
-                          perm.begin() + std::ptrdiff_t(out.offsets_[i + 1]), before);
-            }
-            gather(out.i_, perm, 1);
-            gather(out.j_, perm, 1);
-            gather(out.shifts_, perm, 3);
-            gather(out.distances_, perm, 1);
-            gather(out.vectors_, perm, 3);
+            sort_pairs(out.i_, out.j_, out.shifts_, out.distances_, out.vectors_, out.offsets_,
+                       atom_count_);
         }
         if (!q.shifts) {
             out.shifts_.clear();
@@ -264,15 +349,15 @@ void NeighborSearch::compute(NeighborList &out) const {
     }
 }
 
-NeighborList compute_neighbors(const Box &box, PointsView positions,
-                               const NeighborOptions &options) {
+NeighborList compute_neighbors(const Box& box, PointsView positions,
+                               const NeighborOptions& options) {
     NeighborList out;
     compute_neighbors(box, positions, options, out);
     return out;
 }
 
-void compute_neighbors(const Box &box, PointsView positions, const NeighborOptions &options,
-                       NeighborList &out) {
+void compute_neighbors(const Box& box, PointsView positions, const NeighborOptions& options,
+                       NeighborList& out) {
     out.clear();
     NeighborSearch search;
     search.build(box, positions, options);

@@ -7,8 +7,8 @@
 
 namespace tricell {
 
-double closest_approach_sq(const Eigen::Matrix3d &h, const Eigen::Vector3d &lower,
-                           const Eigen::Vector3d &upper) {
+double closest_approach_sq(const Eigen::Matrix3d& h, const Eigen::Vector3d& lower,
+                           const Eigen::Vector3d& upper) {
     // The origin inside the box: the cells touch or overlap.
     if ((lower.array() <= 0).all() && (upper.array() >= 0).all()) {
         return 0;
@@ -62,7 +62,7 @@ double closest_approach_sq(const Eigen::Matrix3d &h, const Eigen::Vector3d &lowe
 
 namespace {
 
-bool lexicographically_positive(const CellOffset &d) {
+bool lexicographically_positive(const CellOffset& d) {
     if (d[0] != 0) {
         return d[0] > 0;
     }
@@ -75,11 +75,11 @@ bool lexicographically_positive(const CellOffset &d) {
 // Offsets within the reach whose cells can hold a pair closer than the radius. Cells of
 // fractional size f along an axis: offset delta covers fractional differences in
 // ((delta - 1) f, (delta + 1) f).
-std::vector<CellOffset> kept_offsets(const CellGrid &grid, const Box &box, double radius,
+std::vector<CellOffset> kept_offsets(const CellGrid& grid, const Box& box, double radius,
                                      bool half) {
-    const std::array<int, 3> &m = grid.reach();
-    const Eigen::Vector3d &f = grid.cell_size();
-    const Eigen::Vector3d &w = box.perpendicular_widths();
+    const std::array<int, 3>& m = grid.reach();
+    const Eigen::Vector3d& f = grid.cell_size();
+    const Eigen::Vector3d& w = box.perpendicular_widths();
     const double radius_sq = radius * radius;
     std::vector<CellOffset> kept;
     if (half) {
@@ -115,14 +115,14 @@ std::vector<CellOffset> kept_offsets(const CellGrid &grid, const Box &box, doubl
 
 } // namespace
 
-Stencil Stencil::full(const CellGrid &grid, const Box &box, double search_radius) {
+Stencil Stencil::full(const CellGrid& grid, const Box& box, double search_radius) {
     Stencil s;
     s.offsets_ = kept_offsets(grid, box, search_radius, false);
     s.half_ = false;
     return s;
 }
 
-Stencil Stencil::half(const CellGrid &grid, const Box &box, double search_radius) {
+Stencil Stencil::half(const CellGrid& grid, const Box& box, double search_radius) {
     Stencil s;
     s.offsets_ = kept_offsets(grid, box, search_radius, true);
     s.half_ = true;

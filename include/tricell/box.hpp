@@ -46,12 +46,12 @@ struct MinimumImage {
 class TRICELL_API Box {
   public:
     /// Lattice vectors as the columns of h (r = H s).
-    static Box from_columns(const Eigen::Matrix3d &h, Periodicity pbc = Periodicity::all());
+    static Box from_columns(const Eigen::Matrix3d& h, Periodicity pbc = Periodicity::all());
     /// Lattice vectors as the rows of m (as POSCAR, extended XYZ, ASE and pymatgen list them).
-    static Box from_rows(const Eigen::Matrix3d &m, Periodicity pbc = Periodicity::all());
+    static Box from_rows(const Eigen::Matrix3d& m, Periodicity pbc = Periodicity::all());
     /// From lattice parameters: a along x, b in the xy plane, c completing a right-handed frame
     /// (the orientation of pymatgen, ASE and LAMMPS). Angles in degrees.
-    static Box from_parameters(const LatticeParameters &p, Periodicity pbc = Periodicity::all());
+    static Box from_parameters(const LatticeParameters& p, Periodicity pbc = Periodicity::all());
     static Box from_parameters(double a, double b, double c, double alpha, double beta,
                                double gamma, Periodicity pbc = Periodicity::all());
     /// LAMMPS restricted triclinic box: a = (lx, 0, 0), b = (xy, ly, 0), c = (xz, yz, lz).
@@ -59,12 +59,12 @@ class TRICELL_API Box {
                            Periodicity pbc = Periodicity::all());
 
     /// H, with the lattice vectors as columns.
-    const Eigen::Matrix3d &matrix() const { return h_; }
+    const Eigen::Matrix3d& matrix() const { return h_; }
     /// H^-1; its rows are the reciprocal vectors (without 2 pi).
-    const Eigen::Matrix3d &inverse() const { return h_inv_; }
+    const Eigen::Matrix3d& inverse() const { return h_inv_; }
     /// Lattice vector of an axis (0 = a, 1 = b, 2 = c).
     Cartesian vector(int axis) const { return Cartesian(h_.col(axis)); }
-    const Periodicity &periodicity() const { return pbc_; }
+    const Periodicity& periodicity() const { return pbc_; }
     bool periodic(int axis) const { return pbc_[axis]; }
 
     /// det H (negative for a left-handed box, which is valid).
@@ -73,10 +73,10 @@ class TRICELL_API Box {
     double volume() const;
     LatticeParameters parameters() const;
     /// Distances between opposite faces, 1 / |row of H^-1| per axis.
-    const Eigen::Vector3d &perpendicular_widths() const { return widths_; }
+    const Eigen::Vector3d& perpendicular_widths() const { return widths_; }
 
-    Fractional to_fractional(const Cartesian &r) const { return Fractional(h_inv_ * r); }
-    Cartesian to_cartesian(const Fractional &s) const { return Cartesian(h_ * s); }
+    Fractional to_fractional(const Cartesian& r) const { return Fractional(h_inv_ * r); }
+    Cartesian to_cartesian(const Fractional& s) const { return Cartesian(h_ * s); }
     /// Bulk conversions over N x 3 row-major arrays; out must have the same count as in (it may
     /// alias in).
     void to_fractional(PointsView cartesian, MutablePointsView fractional) const;
@@ -85,19 +85,19 @@ class TRICELL_API Box {
     /// Wraps periodic components into [0, 1) and reports the removed integer shift. Open axes
     /// are returned unchanged with shift 0. Throws InvalidArgument for a non-finite coordinate
     /// or one more than 1e9 box lengths away (its shift would not fit an int).
-    WrappedFractional wrap(const Fractional &s) const;
+    WrappedFractional wrap(const Fractional& s) const;
     /// Cartesian convenience: the wrapped Cartesian point and the shift with
     /// r = wrapped + H * image.
-    Cartesian wrap(const Cartesian &r, Shift *image = nullptr) const;
+    Cartesian wrap(const Cartesian& r, Shift* image = nullptr) const;
 
     /// Shortest periodic translate of the displacement d (translations along periodic axes
     /// only). Ties are broken deterministically.
-    MinimumImage minimum_image(const Cartesian &d) const;
+    MinimumImage minimum_image(const Cartesian& d) const;
     /// Length of the minimum-image displacement from r_i to r_j.
-    double minimum_image_distance(const Cartesian &r_i, const Cartesian &r_j) const;
+    double minimum_image_distance(const Cartesian& r_i, const Cartesian& r_j) const;
 
   private:
-    Box(const Eigen::Matrix3d &h, Periodicity pbc);
+    Box(const Eigen::Matrix3d& h, Periodicity pbc);
 
     Eigen::Matrix3d h_;
     Eigen::Matrix3d h_inv_;

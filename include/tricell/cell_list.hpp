@@ -24,7 +24,7 @@ class TRICELL_API LinkedCellList {
     static constexpr std::int32_t end = -1;
 
     /// cell_of[i] in [0, cell_count) is the cell of atom i.
-    void build(const std::vector<std::uint32_t> &cell_of, std::size_t cell_count);
+    void build(const std::vector<std::uint32_t>& cell_of, std::size_t cell_count);
 
     /// First atom of cell c, or `end`.
     std::int32_t head(std::size_t c) const { return head_[c]; }
@@ -42,14 +42,14 @@ class TRICELL_API SortedCellList {
   public:
     /// cell_of[i] in [0, cell_count) is the cell of atom i. Stable: atoms of one cell keep their
     /// original relative order.
-    void build(const std::vector<std::uint32_t> &cell_of, std::size_t cell_count);
+    void build(const std::vector<std::uint32_t>& cell_of, std::size_t cell_count);
 
     /// Sorted range of cell c: [cell_start(c), cell_end(c)).
     std::uint32_t cell_start(std::size_t c) const { return start_[c]; }
     std::uint32_t cell_end(std::size_t c) const { return start_[c + 1]; }
     /// Original index of the k-th atom in sorted order.
     std::uint32_t original(std::size_t k) const { return order_[k]; }
-    const std::vector<std::uint32_t> &order() const { return order_; }
+    const std::vector<std::uint32_t>& order() const { return order_; }
     std::size_t cell_count() const { return start_.empty() ? 0 : start_.size() - 1; }
     std::size_t atom_count() const { return order_.size(); }
 

@@ -39,11 +39,11 @@ class TRICELL_API GeometryError : public Error {
 /// is unknown, i.e. line() == 0).
 class TRICELL_API ParseError : public Error {
   public:
-    ParseError(std::string file, std::size_t line, const std::string &message);
-    const std::string &file() const noexcept { return file_; }
+    ParseError(std::string file, std::size_t line, const std::string& message);
+    const std::string& file() const noexcept { return file_; }
     std::size_t line() const noexcept { return line_; }
     /// The message without the "FILE:LINE: " prefix.
-    const std::string &message() const noexcept { return message_; }
+    const std::string& message() const noexcept { return message_; }
 
   private:
     std::string file_;
@@ -54,7 +54,7 @@ class TRICELL_API ParseError : public Error {
 namespace detail {
 
 /// Concatenates the arguments with operator<< (doubles with 12 significant digits).
-template <class... Args> std::string cat(Args &&...args) {
+template <class... Args> std::string cat(Args&&... args) {
     std::ostringstream out;
     out.precision(12);
     (out << ... << std::forward<Args>(args));
@@ -62,13 +62,13 @@ template <class... Args> std::string cat(Args &&...args) {
 }
 
 /// The one place tricell throws from: fail<InvalidArgument>("cutoff must be > 0 (got ", c, ")").
-template <class E, class... Args> [[noreturn]] void fail(Args &&...args) {
+template <class E, class... Args> [[noreturn]] void fail(Args&&... args) {
     throw E(cat(std::forward<Args>(args)...));
 }
 
 /// ParseError variant: fail_parse(file, line, "what is wrong ", value).
 template <class... Args>
-[[noreturn]] void fail_parse(const std::string &file, std::size_t line, Args &&...args) {
+[[noreturn]] void fail_parse(const std::string& file, std::size_t line, Args&&... args) {
     throw ParseError(file, line, cat(std::forward<Args>(args)...));
 }
 

@@ -49,21 +49,21 @@ class TRICELL_API CellGrid {
     CellGrid() = default;
     /// A grid over the box. `lower` and `upper` give the fractional extent of the positions along
     /// open axes (ignored along periodic ones, which always span [0, 1)).
-    CellGrid(const Box &box, const GridOptions &options, const Eigen::Vector3d &lower,
-             const Eigen::Vector3d &upper);
+    CellGrid(const Box& box, const GridOptions& options, const Eigen::Vector3d& lower,
+             const Eigen::Vector3d& upper);
 
     /// Cells along each axis (>= 1).
-    const std::array<int, 3> &dims() const { return dims_; }
+    const std::array<int, 3>& dims() const { return dims_; }
     /// Reach per axis: cell layers to search on each side.
-    const std::array<int, 3> &reach() const { return reach_; }
+    const std::array<int, 3>& reach() const { return reach_; }
     std::size_t cell_count() const {
         return std::size_t(dims_[0]) * std::size_t(dims_[1]) * std::size_t(dims_[2]);
     }
     /// Fractional coordinate where cell 0 starts along each axis (0 on periodic axes).
-    const Eigen::Vector3d &origin() const { return origin_; }
+    const Eigen::Vector3d& origin() const { return origin_; }
     /// Fractional size of one cell along each axis.
-    const Eigen::Vector3d &cell_size() const { return cell_size_; }
-    const Periodicity &periodicity() const { return pbc_; }
+    const Eigen::Vector3d& cell_size() const { return cell_size_; }
+    const Periodicity& periodicity() const { return pbc_; }
     /// True when max_cells forced cells larger than the target size.
     bool capped() const { return capped_; }
 
@@ -78,7 +78,7 @@ class TRICELL_API CellGrid {
         return (std::size_t(ca) * std::size_t(dims_[1]) + std::size_t(cb)) * std::size_t(dims_[2]) +
                std::size_t(cc);
     }
-    std::size_t cell_of(const Eigen::Vector3d &s) const {
+    std::size_t cell_of(const Eigen::Vector3d& s) const {
         return flat(coordinate(0, s[0]), coordinate(1, s[1]), coordinate(2, s[2]));
     }
 

@@ -80,16 +80,16 @@ class TRICELL_API NeighborList {
   public:
     std::size_t size() const { return i_.size(); }
     bool empty() const { return i_.empty(); }
-    const std::vector<std::uint32_t> &i() const { return i_; }
-    const std::vector<std::uint32_t> &j() const { return j_; }
+    const std::vector<std::uint32_t>& i() const { return i_; }
+    const std::vector<std::uint32_t>& j() const { return j_; }
     /// 3 ints per pair (Sa, Sb, Sc), empty unless Quantities::shifts.
-    const std::vector<std::int32_t> &shifts() const { return shifts_; }
+    const std::vector<std::int32_t>& shifts() const { return shifts_; }
     /// Empty unless Quantities::distances.
-    const std::vector<double> &distances() const { return distances_; }
+    const std::vector<double>& distances() const { return distances_; }
     /// 3 doubles per pair (Dx, Dy, Dz), empty unless Quantities::vectors.
-    const std::vector<double> &vectors() const { return vectors_; }
+    const std::vector<double>& vectors() const { return vectors_; }
     /// With sorted output: pairs of atom i are [offsets[i], offsets[i + 1]). Empty otherwise.
-    const std::vector<std::size_t> &offsets() const { return offsets_; }
+    const std::vector<std::size_t>& offsets() const { return offsets_; }
 
     Shift shift(std::size_t k) const {
         return Shift(shifts_[3 * k], shifts_[3 * k + 1], shifts_[3 * k + 2]);
@@ -114,28 +114,40 @@ class TRICELL_API NeighborList {
 class TRICELL_API NeighborSearch {
   public:
     /// Validates everything (cutoff, positions, limits) before any work.
-    void build(const Box &box, PointsView positions, const NeighborOptions &options);
+    void build(const Box& box, PointsView positions, const NeighborOptions& options);
 
     /// Stores the pairs into `out`. On error `out` is left empty, never half written.
-    void compute(NeighborList &out) const;
+    void compute(NeighborList& out) const;
 
     /// Calls visit(const Pair&) once per pair of the full or half list (as built), in
     /// unspecified order. Stores nothing.
-    template <class Visit> void for_each_pair(Visit &&visit) const;
+    template <class Visit> void for_each_pair(Visit&& visit) const;
 
-    const CellGrid &grid() const { return grid_; }
-    const Stencil &stencil() const { return stencil_; }
-    const SortedCellList &sorted_cells() const { return sorted_; }
-    const LinkedCellList &linked_cells() const { return linked_; }
+    const CellGrid& grid() const { return grid_; }
+    const Stencil& stencil() const { return stencil_; }
+    const SortedCellList& sorted_cells() const { return sorted_; }
+    const LinkedCellList& linked_cells() const { return linked_; }
     /// Expected number of pairs from the density (what max_pairs is checked against first).
     double estimated_pairs() const { return estimated_pairs_; }
     std::size_t atom_count() const { return atom_count_; }
 
   private:
-    template <class Emit> void traverse(Emit &&emit) const;
-    template <bool Half, class Emit> void traverse_sorted(Emit &&emit) const;
-    template <bool Half, class Emit> void traverse_linked(Emit &&emit) const;
-    template <class CellPair> void for_each_cell_pair(CellPair &&cell_pair) const;
+    // A row of the stencil: offsets (da, db, dc) for dc in [dc_lo, dc_hi]. In the sorted layout
+    // the cells of one row are consecutive in memory (c varies fastest), so a row is scanned as
+    // at most a few contiguous atom ranges instead of one range per offset.
+    struct StencilRow {
+        int da, db, dc_lo, dc_hi;
+    };
+
+    template <class Emit>
+    void traverse(Emit&& emit, std::size_t cell_begin, std::size_t cell_end) const;
+    template <bool Half, class Emit>
+    void traverse_sorted(Emit&& emit, std::size_t cell_begin, std::size_t cell_end) const;
+    template <bool Half, class Emit>
+    void traverse_linked(Emit&& emit, std::size_t cell_begin, std::size_t cell_end) const;
+    template <class CellPair>
+    void for_each_cell_pair(CellPair&& cell_pair, std::size_t cell_begin,
+                            std::size_t cell_end) const;
 
     NeighborOptions options_;
     Eigen::Matrix3d h_ = Eigen::Matrix3d::Identity();
@@ -144,6 +156,7 @@ class TRICELL_API NeighborSearch {
     double estimated_pairs_ = 0;
     CellGrid grid_;
     Stencil stencil_;
+    std::vector<StencilRow> rows_;
     SortedCellList sorted_;
     LinkedCellList linked_;
     // Per axis, for t = c + delta in [-reach, n + reach): the neighbour cell coordinate
@@ -160,15 +173,15 @@ class TRICELL_API NeighborSearch {
 };
 
 /// Convenience: build a search and store its pairs.
-TRICELL_API NeighborList compute_neighbors(const Box &box, PointsView positions,
-                                           const NeighborOptions &options);
-TRICELL_API void compute_neighbors(const Box &box, PointsView positions,
-                                   const NeighborOptions &options, NeighborList &out);
+TRICELL_API NeighborList compute_neighbors(const Box& box, PointsView positions,
+                                           const NeighborOptions& options);
+TRICELL_API void compute_neighbors(const Box& box, PointsView positions,
+                                   const NeighborOptions& options, NeighborList& out);
 
 /// Convenience: visit every pair without storing (see NeighborSearch::for_each_pair).
 template <class Visit>
-void for_each_pair(const Box &box, PointsView positions, const NeighborOptions &options,
-                   Visit &&visit) {
+void for_each_pair(const Box& box, PointsView positions, const NeighborOptions& options,
+                   Visit&& visit) {
     NeighborSearch search;
     search.build(box, positions, options);
     search.for_each_pair(std::forward<Visit>(visit));

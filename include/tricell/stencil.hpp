@@ -33,11 +33,11 @@ class TRICELL_API Stencil {
   public:
     Stencil() = default;
     /// Every offset whose cells can hold a pair closer than the search radius.
-    static Stencil full(const CellGrid &grid, const Box &box, double search_radius);
+    static Stencil full(const CellGrid& grid, const Box& box, double search_radius);
     /// The zero offset first, then the lexicographically positive half of full().
-    static Stencil half(const CellGrid &grid, const Box &box, double search_radius);
+    static Stencil half(const CellGrid& grid, const Box& box, double search_radius);
 
-    const std::vector<CellOffset> &offsets() const { return offsets_; }
+    const std::vector<CellOffset>& offsets() const { return offsets_; }
     std::size_t size() const { return offsets_.size(); }
     bool is_half() const { return half_; }
 
@@ -48,7 +48,7 @@ class TRICELL_API Stencil {
 
 /// Squared closest approach |H u|^2 over u in the box lower <= u <= upper (fractional), solved
 /// exactly by enumerating the active sets of the box constraints.
-TRICELL_API double closest_approach_sq(const Eigen::Matrix3d &h, const Eigen::Vector3d &lower,
-                                       const Eigen::Vector3d &upper);
+TRICELL_API double closest_approach_sq(const Eigen::Matrix3d& h, const Eigen::Vector3d& lower,
+                                       const Eigen::Vector3d& upper);
 
 } // namespace tricell

@@ -21,6 +21,6 @@ struct ReducedBasis {
 };
 
 /// Reduces the first `count` columns of `basis` (count in 0..3).
-ReducedBasis reduce_basis(const Eigen::Matrix3d &basis, int count);
+ReducedBasis reduce_basis(const Eigen::Matrix3d& basis, int count);
 
 } // namespace tricell::detail

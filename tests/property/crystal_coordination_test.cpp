@@ -41,13 +41,13 @@ Crystal hcp() { // a = 1, ideal c/a
 }
 
 // All crystal sites inside the supercell `box` (which must be spanned by lattice vectors).
-std::vector<Eigen::Vector3d> fill(const Crystal &crystal, const Box &box) {
+std::vector<Eigen::Vector3d> fill(const Crystal& crystal, const Box& box) {
     std::vector<Eigen::Vector3d> sites;
     const int reach = 12;
     for (int a = -reach; a <= reach; ++a) {
         for (int b = -reach; b <= reach; ++b) {
             for (int c = -reach; c <= reach; ++c) {
-                for (const Eigen::Vector3d &f : crystal.basis) {
+                for (const Eigen::Vector3d& f : crystal.basis) {
                     const Eigen::Vector3d r = crystal.lattice * (f + Eigen::Vector3d(a, b, c));
                     const Eigen::Vector3d s = box.inverse() * r;
                     if ((s.array() >= -1e-9).all() && (s.array() < 1 - 1e-9).all()) {
@@ -60,7 +60,7 @@ std::vector<Eigen::Vector3d> fill(const Crystal &crystal, const Box &box) {
     return sites;
 }
 
-std::vector<int> coordination(const Box &box, const std::vector<Eigen::Vector3d> &x, double cutoff,
+std::vector<int> coordination(const Box& box, const std::vector<Eigen::Vector3d>& x, double cutoff,
                               bool half) {
     tricell::NeighborOptions o;
     o.cutoff = cutoff;
@@ -76,7 +76,7 @@ std::vector<int> coordination(const Box &box, const std::vector<Eigen::Vector3d>
     return count;
 }
 
-void expect_uniform_coordination(const Crystal &crystal, const Box &box, double cutoff,
+void expect_uniform_coordination(const Crystal& crystal, const Box& box, double cutoff,
                                  int expected, std::size_t expected_atoms) {
     const std::vector<Eigen::Vector3d> x = fill(crystal, box);
     ASSERT_EQ(x.size(), expected_atoms);

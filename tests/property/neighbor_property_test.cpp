@@ -22,9 +22,9 @@ namespace {
 
 constexpr std::uint64_t case_count = 2400;
 
-double tolerance(const RandomSystem &sys) {
+double tolerance(const RandomSystem& sys) {
     double scale = 1;
-    for (const auto &x : sys.positions) {
+    for (const auto& x : sys.positions) {
         scale = std::max(scale, x.cwiseAbs().maxCoeff());
     }
     return 1e-10 * scale;
@@ -32,15 +32,15 @@ double tolerance(const RandomSystem &sys) {
 
 // Equal as sets of (i, j, S), with equal d and D; an entry missing from one side is allowed
 // only when its distance is within the tolerance of the cutoff (rounding decides it).
-void expect_same_pairs(const PairMap &expected, const PairMap &actual, double cutoff, double tol,
-                       const char *what) {
+void expect_same_pairs(const PairMap& expected, const PairMap& actual, double cutoff, double tol,
+                       const char* what) {
     SCOPED_TRACE(what);
     int reported = 0;
-    for (const auto &[key, value] : expected) {
+    for (const auto& [key, value] : expected) {
         const auto found = actual.find(key);
         if (found == actual.end()) {
             if (std::abs(value.distance - cutoff) > tol && reported++ < 5) {
-                const auto &[i, j, a, b, c] = key;
+                const auto& [i, j, a, b, c] = key;
                 ADD_FAILURE() << "missing pair i=" << i << " j=" << j << " S=(" << a << "," << b
                               << "," << c << ") d=" << value.distance;
             }
@@ -54,9 +54,9 @@ void expect_same_pairs(const PairMap &expected, const PairMap &actual, double cu
             }
         }
     }
-    for (const auto &[key, value] : actual) {
+    for (const auto& [key, value] : actual) {
         if (expected.count(key) == 0 && std::abs(value.distance - cutoff) > tol && reported++ < 5) {
-            const auto &[i, j, a, b, c] = key;
+            const auto& [i, j, a, b, c] = key;
             ADD_FAILURE() << "extra pair i=" << i << " j=" << j << " S=(" << a << "," << b << ","
                           << c << ") d=" << value.distance;
         }
@@ -75,7 +75,7 @@ NeighborOptions options_for(std::uint64_t seed, double cutoff) {
     return o;
 }
 
-NeighborList run(const RandomSystem &sys, NeighborOptions o, bool half, CellListKind kind) {
+NeighborList run(const RandomSystem& sys, NeighborOptions o, bool half, CellListKind kind) {
     o.half = half;
     o.cell_list = kind;
     return tricell::compute_neighbors(sys.box(), sys.positions, o);
@@ -112,8 +112,8 @@ TEST(NeighborProperty, HalfListEqualsCanonicalFull_RandomCases) {
         expect_same_pairs(tricell::testing::canonical_half(full), half, sys.cutoff, tolerance(sys),
                           "half vs canonical(full)");
         // Reciprocity: (i, j, S) in the full list iff (j, i, -S), with D negated.
-        for (const auto &[key, value] : full) {
-            const auto &[i, j, a, b, c] = key;
+        for (const auto& [key, value] : full) {
+            const auto& [i, j, a, b, c] = key;
             const auto reverse = full.find({j, i, -a, -b, -c});
             ASSERT_NE(reverse, full.end());
             EXPECT_LT((reverse->second.vector + value.vector).norm(), tolerance(sys));
@@ -184,7 +184,7 @@ TEST(NeighborProperty, InvariantUnderLatticeTranslationOfAnyAtom_RandomCases) {
         const PairMap after = tricell::testing::to_map(run(sys, o, false, CellListKind::sorted));
         // x_k + H t: pairs (k, j, S) become (k, j, S + t) and (i, k, S) become (i, k, S - t).
         PairMap expected;
-        for (const auto &[key, value] : before) {
+        for (const auto& [key, value] : before) {
             auto [i, j, a, b, c] = key;
             Eigen::Vector3i s(a, b, c);
             if (i == moved && j != moved) {
@@ -214,11 +214,11 @@ TEST(NeighborProperty, InvariantUnderRotationOfTheWholeSystem_RandomCases) {
         const NeighborOptions o = options_for(seed, sys.cutoff);
         const PairMap before = tricell::testing::to_map(run(sys, o, true, CellListKind::sorted));
         sys.h = rotation * sys.h;
-        for (auto &x : sys.positions) {
+        for (auto& x : sys.positions) {
             x = rotation * x;
         }
         PairMap expected;
-        for (const auto &[key, value] : before) {
+        for (const auto& [key, value] : before) {
             expected[key] = {value.distance, rotation * value.vector};
         }
         const PairMap after = tricell::testing::to_map(run(sys, o, true, CellListKind::sorted));
@@ -238,7 +238,7 @@ TEST(NeighborProperty, VisitorSeesExactlyTheStoredPairs_RandomCases) {
         const PairMap stored =
             tricell::testing::to_map(tricell::compute_neighbors(sys.box(), sys.positions, o));
         PairMap visited;
-        tricell::for_each_pair(sys.box(), sys.positions, o, [&](const tricell::Pair &p) {
+        tricell::for_each_pair(sys.box(), sys.positions, o, [&](const tricell::Pair& p) {
             visited[{p.i, p.j, p.shift[0], p.shift[1], p.shift[2]}] = {p.distance(), p.vector};
         });
         ASSERT_EQ(stored.size(), visited.size());

@@ -27,11 +27,11 @@ struct PairValue {
 
 using PairMap = std::map<PairKey, PairValue>;
 
-inline PairMap brute_force_pairs(const Box &box, const std::vector<Eigen::Vector3d> &x,
+inline PairMap brute_force_pairs(const Box& box, const std::vector<Eigen::Vector3d>& x,
                                  double cutoff) {
     PairMap out;
-    const Eigen::Matrix3d &h = box.matrix();
-    const Eigen::Vector3d &w = box.perpendicular_widths();
+    const Eigen::Matrix3d& h = box.matrix();
+    const Eigen::Vector3d& w = box.perpendicular_widths();
     std::vector<Eigen::Vector3d> s(x.size());
     for (std::size_t i = 0; i < x.size(); ++i) {
         s[i] = box.inverse() * x[i];
@@ -71,10 +71,10 @@ inline PairMap brute_force_pairs(const Box &box, const std::vector<Eigen::Vector
 
 /// The half list that the contract's canonical orientation keeps from a full list:
 /// i < j, or i == j with S lexicographically positive.
-inline PairMap canonical_half(const PairMap &full) {
+inline PairMap canonical_half(const PairMap& full) {
     PairMap out;
-    for (const auto &[key, value] : full) {
-        const auto &[i, j, a, b, c] = key;
+    for (const auto& [key, value] : full) {
+        const auto& [i, j, a, b, c] = key;
         const bool positive = a > 0 || (a == 0 && (b > 0 || (b == 0 && c > 0)));
         if (i < j || (i == j && positive)) {
             out.emplace(key, value);
@@ -84,7 +84,7 @@ inline PairMap canonical_half(const PairMap &full) {
 }
 
 /// A stored neighbour list as a map (requires shifts, distances and vectors to be stored).
-inline PairMap to_map(const NeighborList &list) {
+inline PairMap to_map(const NeighborList& list) {
     if (list.shifts().size() != 3 * list.size() || list.distances().size() != list.size() ||
         list.vectors().size() != 3 * list.size()) {
         throw std::logic_error("to_map needs shifts, distances and vectors stored");

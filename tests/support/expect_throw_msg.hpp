@@ -11,7 +11,7 @@
         bool tricell_thrown_ = false;                                                              \
         try {                                                                                      \
             statement;                                                                             \
-        } catch (const exception_type &e) {                                                        \
+        } catch (const exception_type& e) {                                                        \
             tricell_thrown_ = true;                                                                \
             EXPECT_NE(std::string(e.what()).find(substring), std::string::npos)                    \
                 << "message was: " << e.what();                                                    \

@@ -13,7 +13,7 @@ namespace tricell::testing {
 /// A random triclinic box: edge lengths in [min_len, max_len], random tilts up to `skew`
 /// times the edge lengths (skew 0 = orthorhombic; skew 5 = strongly skewed), random rotation,
 /// and a random handedness when `allow_left_handed`.
-inline Eigen::Matrix3d random_box_matrix(std::mt19937_64 &rng, double min_len, double max_len,
+inline Eigen::Matrix3d random_box_matrix(std::mt19937_64& rng, double min_len, double max_len,
                                          double skew, bool allow_left_handed = true) {
     std::uniform_real_distribution<double> len(min_len, max_len);
     std::uniform_real_distribution<double> tilt(-skew, skew);

@@ -33,8 +33,8 @@ Eigen::Matrix3d triclinic_columns() {
 
 // Exhaustive minimum image: every translate n with |n_k| <= 2|d| / w_k (a shorter translate
 // than d itself satisfies |H n| <= 2|d|), the a-coefficient chosen exactly by 1-D rounding.
-double brute_force_minimum_distance(const Box &box, const Eigen::Vector3d &d) {
-    const Eigen::Matrix3d &h = box.matrix();
+double brute_force_minimum_distance(const Box& box, const Eigen::Vector3d& d) {
+    const Eigen::Matrix3d& h = box.matrix();
     const Eigen::Vector3d w = box.perpendicular_widths();
     int bound[3];
     for (int k = 0; k < 3; ++k) {
@@ -67,7 +67,7 @@ TEST(Box, FromRowsIsTransposeOfFromColumns) {
 
 TEST(Box, FromParametersOrientsAAlongXAndBInXyPlane) {
     const Box box = Box::from_parameters(4.0, 5.0, 6.0, 80.0, 95.0, 110.0);
-    const Eigen::Matrix3d &h = box.matrix();
+    const Eigen::Matrix3d& h = box.matrix();
     EXPECT_DOUBLE_EQ(h(0, 0), 4.0);
     EXPECT_EQ(h(1, 0), 0.0);
     EXPECT_EQ(h(2, 0), 0.0);
@@ -120,7 +120,7 @@ TEST(Box, ParametersRoundTripOverRandomCells) {
             EXPECT_NEAR(q.beta, p.beta, 1e-9);
             EXPECT_NEAR(q.gamma, p.gamma, 1e-9);
             ++checked;
-        } catch (const tricell::GeometryError &) {
+        } catch (const tricell::GeometryError&) {
             // angles that cannot close a cell: checked separately
         }
     }
@@ -170,7 +170,7 @@ TEST(Box, BulkConversionRejectsSizeMismatch) {
 // Perpendicular widths against the analytic w_a = V / |b x c| written with lattice parameters.
 TEST(Box, PerpendicularWidthsMatchAnalyticFormulas) {
     struct Case {
-        const char *name;
+        const char* name;
         double a, b, c, alpha, beta, gamma;
     };
     const Case cases[] = {
@@ -181,7 +181,7 @@ TEST(Box, PerpendicularWidthsMatchAnalyticFormulas) {
         {"triclinic", 5.1, 6.2, 7.3, 81, 103, 112},
         {"rhombohedral", 5, 5, 5, 60, 60, 60},
     };
-    for (const Case &c : cases) {
+    for (const Case& c : cases) {
         SCOPED_TRACE(c.name);
         const Box box = Box::from_parameters(c.a, c.b, c.c, c.alpha, c.beta, c.gamma);
         const double ca = std::cos(rad(c.alpha)), cb = std::cos(rad(c.beta)),
@@ -226,7 +226,7 @@ TEST(Box, WrapFloatingPointEdges) {
         {-1e6 - 0.25, 0.75, -1000001},
         {-1e6, 0.0, -1000000},
     };
-    for (const Case &c : cases) {
+    for (const Case& c : cases) {
         SCOPED_TRACE(c.s);
         const tricell::WrappedFractional w = box.wrap(Fractional(c.s, 0.5, 0.5));
         EXPECT_EQ(w.wrapped.x(), c.wrapped);

@@ -12,7 +12,7 @@ TEST(CellLists, LinkedAndSortedListTheSameAtomsPerCell) {
         const std::size_t cells = 1 + std::size_t(trial);
         std::uniform_int_distribution<std::uint32_t> pick(0, std::uint32_t(cells - 1));
         std::vector<std::uint32_t> cell_of(std::size_t(trial) * 7);
-        for (auto &c : cell_of) {
+        for (auto& c : cell_of) {
             c = pick(rng);
         }
         tricell::LinkedCellList linked;

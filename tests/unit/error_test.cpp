@@ -19,7 +19,7 @@ TEST(Error, FailThrowsTheRequestedTypeWithFormattedMessage) {
     try {
         tricell::detail::fail<tricell::InvalidArgument>("cutoff must be > 0 (got ", -1.5, ")");
         FAIL() << "fail() returned";
-    } catch (const tricell::InvalidArgument &e) {
+    } catch (const tricell::InvalidArgument& e) {
         EXPECT_STREQ(e.what(), "cutoff must be > 0 (got -1.5)");
     }
 }

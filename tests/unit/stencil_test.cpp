@@ -12,7 +12,7 @@ using tricell::CellOffset;
 using tricell::Stencil;
 
 namespace {
-CellGrid grid_for(const Box &box, double radius, double k) {
+CellGrid grid_for(const Box& box, double radius, double k) {
     tricell::GridOptions o;
     o.search_radius = radius;
     o.cells_per_cutoff = k;
@@ -57,13 +57,13 @@ TEST(Stencil, HalfIsExactlyOneOfEachOppositePair) {
         const Stencil half = Stencil::half(grid, box, radius);
         const std::set<CellOffset> f(full.offsets().begin(), full.offsets().end());
         std::set<CellOffset> reconstructed;
-        for (const CellOffset &d : half.offsets()) {
+        for (const CellOffset& d : half.offsets()) {
             reconstructed.insert(d);
             reconstructed.insert(CellOffset{{-d[0], -d[1], -d[2]}});
         }
         EXPECT_EQ(reconstructed, f);
         EXPECT_EQ(half.size(), (full.size() + 1) / 2);
-        for (const CellOffset &d : full.offsets()) {
+        for (const CellOffset& d : full.offsets()) {
             EXPECT_EQ(f.count(CellOffset{{-d[0], -d[1], -d[2]}}), 1u) << "pruning not symmetric";
         }
     }
