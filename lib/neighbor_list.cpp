@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <limits>
 #include <numeric>
+#include <thread>
 
 #include "tricell/error.hpp"
 
@@ -31,6 +33,21 @@ void gather(std::vector<T>& v, const std::vector<std::size_t>& perm, std::size_t
     v.swap(out);
 }
 
+// Runs task(0) .. task(count - 1), each on its own thread (task 0 on the calling thread).
+template <class Task> void run_in_threads(std::size_t count, Task&& task) {
+    std::vector<std::thread> workers;
+    workers.reserve(count > 0 ? count - 1 : 0);
+    for (std::size_t t = 1; t < count; ++t) {
+        workers.emplace_back([&task, t] { task(t); });
+    }
+    if (count > 0) {
+        task(0);
+    }
+    for (std::thread& w : workers) {
+        w.join();
+    }
+}
+
 } // namespace
 
 void NeighborOptions::validate() const {
@@ -42,6 +59,9 @@ void NeighborOptions::validate() const {
     }
     if (!(std::isfinite(cells_per_cutoff) && cells_per_cutoff >= 1)) {
         detail::fail<InvalidArgument>("cells_per_cutoff must be >= 1 (got ", cells_per_cutoff, ")");
+    }
+    if (threads < 0) {
+        detail::fail<InvalidArgument>("threads must be >= 0 (got ", threads, ")");
     }
 }
 
@@ -129,9 +149,8 @@ void NeighborSearch::build(const Box& box, PointsView positions, const NeighborO
     // offsets is always correct; in practice the kept dc already form an interval).
     rows_.clear();
     for (const CellOffset& d : stencil_.offsets()) {
-        auto row = std::find_if(rows_.begin(), rows_.end(), [&](const StencilRow& r) {
-            return r.da == d[0] && r.db == d[1];
-        });
+        auto row = std::find_if(rows_.begin(), rows_.end(),
+                                [&](const StencilRow& r) { return r.da == d[0] && r.db == d[1]; });
         if (row == rows_.end()) {
             rows_.push_back(StencilRow{d[0], d[1], d[2], d[2]});
         } else {
@@ -204,8 +223,7 @@ class PairSink {
     PairSink(std::vector<std::uint32_t>& i, std::vector<std::uint32_t>& j,
              std::vector<std::int32_t>* shifts, std::vector<double>* distances,
              std::vector<double>* vectors, std::size_t limit, std::size_t initial)
-        : i_(i), j_(j), shifts_(shifts), distances_(distances), vectors_(vectors),
-          limit_(limit) {
+        : i_(i), j_(j), shifts_(shifts), distances_(distances), vectors_(vectors), limit_(limit) {
         resize(limit_ != 0 ? std::min(initial, limit_) : initial);
     }
 
@@ -322,20 +340,99 @@ void sort_pairs(std::vector<std::uint32_t>& is, std::vector<std::uint32_t>& js,
 
 } // namespace
 
+std::vector<double> NeighborSearch::cell_costs() const {
+    const std::size_t cells = grid_.cell_count();
+    std::vector<double> cost(cells, 0.0);
+    if (options_.cell_list == CellListKind::sorted) {
+        for (std::size_t c = 0; c < cells; ++c) {
+            const double atoms = sorted_.cell_end(c) - sorted_.cell_start(c);
+            if (atoms == 0) {
+                continue;
+            }
+            double candidates = 0;
+            for_each_row_piece(c, [&](std::uint32_t begin, std::uint32_t end, bool, int, int, int) {
+                candidates += end - begin;
+            });
+            cost[c] = atoms * (candidates + 1);
+        }
+    } else {
+        for (std::size_t c = 0; c < cells; ++c) {
+            for (auto a = linked_.head(c); a != LinkedCellList::end; a = linked_.next(a)) {
+                cost[c] += 1;
+            }
+        }
+    }
+    return cost;
+}
+
 void NeighborSearch::compute(NeighborList& out) const {
     out.clear();
     const Quantities& q = options_.quantities;
     const bool keep_shifts = q.shifts || options_.sorted; // sorting needs S
+    const std::size_t cells = grid_.cell_count();
+    std::size_t threads = options_.threads > 0
+                              ? std::size_t(options_.threads)
+                              : std::max<std::size_t>(1, std::thread::hardware_concurrency());
+    // With automatic threads, small searches are not worth a thread.
+    if (options_.threads == 0 && (estimated_pairs_ < 20000 || cells < 4 * threads)) {
+        threads = 1;
+    }
+    threads = std::min(threads, cells);
     try {
-        const double expected = std::min(estimated_pairs_ * 1.05 + 16, 1e8);
-        PairSink sink(out.i_, out.j_, keep_shifts ? &out.shifts_ : nullptr,
-                      q.distances ? &out.distances_ : nullptr, q.vectors ? &out.vectors_ : nullptr,
-                      options_.max_pairs, static_cast<std::size_t>(expected));
-        traverse(
-            [&](std::uint32_t i, std::uint32_t j, int sa, int sb, int sc, double dx, double dy,
-                double dz, double d_sq) { sink.add(i, j, sa, sb, sc, dx, dy, dz, d_sq); },
-            0, grid_.cell_count());
-        sink.finish();
+        // Contiguous chunks of cells of about equal cost; chunk t goes to thread t and the
+        // chunks are concatenated in cell order, so the result does not depend on `threads`.
+        std::vector<std::size_t> bounds{0};
+        if (threads > 1) {
+            const std::vector<double> cost = cell_costs();
+            const double total = std::accumulate(cost.begin(), cost.end(), 0.0);
+            double running = 0;
+            for (std::size_t c = 0; c < cells && bounds.size() < threads; ++c) {
+                running += cost[c];
+                if (running >= total * double(bounds.size()) / double(threads)) {
+                    bounds.push_back(c + 1);
+                }
+            }
+        }
+        bounds.push_back(cells);
+        const std::size_t chunks = bounds.size() - 1;
+
+        // Chunk 0 writes straight into `out`, the others into their own lists.
+        std::vector<NeighborList> partial(chunks - 1);
+        std::vector<std::size_t> sizes(chunks, 0);
+        std::vector<std::exception_ptr> errors(chunks);
+        const double share = std::min(estimated_pairs_ * 1.05 + 16, 1e8) / double(chunks);
+        auto run_chunk = [&](std::size_t t) {
+            try {
+                NeighborList& list = t == 0 ? out : partial[t - 1];
+                PairSink sink(list.i_, list.j_, keep_shifts ? &list.shifts_ : nullptr,
+                              q.distances ? &list.distances_ : nullptr,
+                              q.vectors ? &list.vectors_ : nullptr, options_.max_pairs,
+                              static_cast<std::size_t>(share));
+                traverse([&](std::uint32_t i, std::uint32_t j, int sa, int sb, int sc, double dx,
+                             double dy, double dz,
+                             double d_sq) { sink.add(i, j, sa, sb, sc, dx, dy, dz, d_sq); },
+                         bounds[t], bounds[t + 1]);
+                sink.finish();
+                sizes[t] = sink.size();
+            } catch (...) {
+                errors[t] = std::current_exception();
+            }
+        };
+        run_in_threads(chunks, run_chunk);
+        for (const std::exception_ptr& e : errors) {
+            if (e) {
+                std::rethrow_exception(e);
+            }
+        }
+        if (chunks > 1) {
+            const std::size_t total = std::accumulate(sizes.begin(), sizes.end(), std::size_t(0));
+            if (options_.max_pairs != 0 && total > options_.max_pairs) {
+                detail::fail<InvalidArgument>(
+                    "the neighbour list has more than max_pairs = ", options_.max_pairs,
+                    " pairs; raise NeighborOptions::max_pairs to allow it");
+            }
+            append_in_order(out, partial, sizes, keep_shifts, q.distances, q.vectors);
+        }
         if (options_.sorted) {
             sort_pairs(out.i_, out.j_, out.shifts_, out.distances_, out.vectors_, out.offsets_,
                        atom_count_);
@@ -347,6 +444,40 @@ void NeighborSearch::compute(NeighborList& out) const {
         out.clear();
         throw;
     }
+}
+
+void NeighborSearch::append_in_order(NeighborList& out, std::vector<NeighborList>& partial,
+                                     const std::vector<std::size_t>& sizes, bool shifts,
+                                     bool distances, bool vectors) {
+    std::vector<std::size_t> offset(sizes.size(), 0);
+    for (std::size_t t = 1; t < sizes.size(); ++t) {
+        offset[t] = offset[t - 1] + sizes[t - 1];
+    }
+    const std::size_t total = offset.back() + sizes.back();
+    out.i_.resize(total);
+    out.j_.resize(total);
+    if (shifts) {
+        out.shifts_.resize(3 * total);
+    }
+    if (distances) {
+        out.distances_.resize(total);
+    }
+    if (vectors) {
+        out.vectors_.resize(3 * total);
+    }
+    // Each partial list is copied to its place by its own thread.
+    run_in_threads(sizes.size() - 1, [&](std::size_t k) {
+        const NeighborList& from = partial[k];
+        const std::size_t at = offset[k + 1];
+        std::copy(from.i_.begin(), from.i_.end(), out.i_.begin() + std::ptrdiff_t(at));
+        std::copy(from.j_.begin(), from.j_.end(), out.j_.begin() + std::ptrdiff_t(at));
+        std::copy(from.shifts_.begin(), from.shifts_.end(),
+                  out.shifts_.begin() + std::ptrdiff_t(3 * at));
+        std::copy(from.distances_.begin(), from.distances_.end(),
+                  out.distances_.begin() + std::ptrdiff_t(at));
+        std::copy(from.vectors_.begin(), from.vectors_.end(),
+                  out.vectors_.begin() + std::ptrdiff_t(3 * at));
+    });
 }
 
 NeighborList compute_neighbors(const Box& box, PointsView positions,

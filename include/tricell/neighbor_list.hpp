@@ -60,6 +60,10 @@ struct NeighborOptions {
     std::size_t max_pairs = 500'000'000;
     /// Cap on grid cells; 0 means 4 N + 64. Memory follows atoms, not volume.
     std::size_t max_cells = 0;
+    /// Threads for NeighborSearch::compute(); 0 means all hardware threads. The stored list is
+    /// identical, pair for pair and in the same order, whatever the number of threads.
+    /// (for_each_pair() always runs on the calling thread.)
+    int threads = 1;
 
     /// Throws InvalidArgument naming the offending field and value.
     void validate() const;
@@ -145,6 +149,15 @@ class TRICELL_API NeighborSearch {
     void traverse_sorted(Emit&& emit, std::size_t cell_begin, std::size_t cell_end) const;
     template <bool Half, class Emit>
     void traverse_linked(Emit&& emit, std::size_t cell_begin, std::size_t cell_end) const;
+    // Calls piece(begin, end, own, sa, sb, sc) for each contiguous sorted atom range that the
+    // stencil rows reach from cell c1, with its image shift.
+    template <class Piece> void for_each_row_piece(std::size_t c1, Piece&& piece) const;
+    // Estimated work per cell (candidate pairs), for splitting cells between threads.
+    std::vector<double> cell_costs() const;
+    // Appends the chunks' lists to `out` (which holds chunk 0) in chunk order.
+    static void append_in_order(NeighborList& out, std::vector<NeighborList>& partial,
+                                const std::vector<std::size_t>& sizes, bool shifts, bool distances,
+                                bool vectors);
     template <class CellPair>
     void for_each_cell_pair(CellPair&& cell_pair, std::size_t cell_begin,
                             std::size_t cell_end) const;

@@ -245,3 +245,24 @@ TEST(NeighborProperty, VisitorSeesExactlyTheStoredPairs_RandomCases) {
         expect_same_pairs(stored, visited, sys.cutoff, 0.0, "visitor vs stored");
     }
 }
+
+TEST(NeighborProperty, OutputIdenticalForAnyThreadCount_RandomCases) {
+    for (std::uint64_t seed = 5; seed < case_count; seed += 11) {
+        const RandomSystem sys = tricell::testing::random_system(seed);
+        SCOPED_TRACE(testing::Message() << "seed " << seed << " (" << sys.kind << ")");
+        NeighborOptions o = options_for(seed, sys.cutoff);
+        o.half = seed % 2 == 1;
+        o.cell_list = seed % 3 == 0 ? CellListKind::linked : CellListKind::sorted;
+        o.threads = 1;
+        const NeighborList one = tricell::compute_neighbors(sys.box(), sys.positions, o);
+        for (const int threads : {2, 3, 0}) {
+            o.threads = threads;
+            const NeighborList many = tricell::compute_neighbors(sys.box(), sys.positions, o);
+            ASSERT_EQ(one.i(), many.i()) << threads << " threads";
+            ASSERT_EQ(one.j(), many.j());
+            ASSERT_EQ(one.shifts(), many.shifts());
+            ASSERT_EQ(one.distances(), many.distances());
+            ASSERT_EQ(one.vectors(), many.vectors());
+        }
+    }
+}

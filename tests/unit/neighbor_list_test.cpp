@@ -162,6 +162,10 @@ TEST(NeighborList, RejectsBadCutoff) {
     o.cells_per_cutoff = 0.5;
     EXPECT_THROW_MSG(tricell::compute_neighbors(cube10, x, o), tricell::InvalidArgument,
                      "cells_per_cutoff must be >= 1 (got 0.5)");
+    o.cells_per_cutoff = 1;
+    o.threads = -2;
+    EXPECT_THROW_MSG(tricell::compute_neighbors(cube10, x, o), tricell::InvalidArgument,
+                     "threads must be >= 0 (got -2)");
 }
 
 TEST(NeighborList, RejectsNonFinitePositionNamingIt) {
@@ -202,4 +206,16 @@ TEST(NeighborList, ErrorLeavesOutputEmptyNotHalfWritten) {
                      "the neighbour list has more than max_pairs = 100 pairs");
     EXPECT_TRUE(list.empty());
     EXPECT_TRUE(list.distances().empty());
+    // The same with threads: each chunk stays below the limit, the total does not.
+    x.resize(12);
+    x.insert(x.end(), 12, Eigen::Vector3d(6, 6, 6));
+    o.threads = 2;
+    o.max_pairs = 2 * 12 * 11;
+    o.max_cells = 64;
+    tricell::compute_neighbors(cube10, x, o, list);
+    ASSERT_EQ(list.size(), 2u * 12 * 11);
+    o.max_pairs = 2 * 12 * 11 - 1;
+    EXPECT_THROW_MSG(tricell::compute_neighbors(cube10, x, o, list), tricell::InvalidArgument,
+                     "more than max_pairs");
+    EXPECT_TRUE(list.empty());
 }

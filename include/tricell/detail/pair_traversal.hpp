@@ -75,6 +75,55 @@ void NeighborSearch::for_each_cell_pair(CellPair&& cell_pair, std::size_t cell_b
     }
 }
 
+template <class Piece>
+void NeighborSearch::for_each_row_piece(std::size_t c1, Piece&& piece) const {
+    const std::array<int, 3>& n = grid_.dims();
+    const std::array<int, 3>& m = grid_.reach();
+    const bool periodic_c = grid_.periodicity()[2];
+    const int cc = int(c1 % std::size_t(n[2]));
+    const int cb = int((c1 / std::size_t(n[2])) % std::size_t(n[1]));
+    const int ca = int(c1 / (std::size_t(n[2]) * std::size_t(n[1])));
+    for (const StencilRow& row : rows_) {
+        const std::size_t ta = std::size_t(ca + row.da + m[0]);
+        const std::size_t tb = std::size_t(cb + row.db + m[1]);
+        const int na = neighbor_cell_[0][ta];
+        const int nb = neighbor_cell_[1][tb];
+        if (na < 0 || nb < 0) {
+            continue; // beyond the end of an open axis
+        }
+        const int sa = neighbor_shift_[0][ta];
+        const int sb = neighbor_shift_[1][tb];
+        const std::size_t column = grid_.flat(na, nb, 0);
+        const bool own_row = row.da == 0 && row.db == 0;
+        // Walk t = cc + dc over the row, one piece per image along c.
+        int t = cc + row.dc_lo;
+        const int t_end = cc + row.dc_hi;
+        if (!periodic_c) {
+            t = std::max(t, 0);
+        }
+        while (t <= t_end) {
+            int sc = 0, first = t, last = t_end;
+            if (periodic_c) {
+                sc = floor_div(t, n[2]);
+                first = t - sc * n[2];
+                last = std::min(t_end - sc * n[2], n[2] - 1);
+            } else {
+                last = std::min(t_end, n[2] - 1);
+                if (first > last) {
+                    break;
+                }
+            }
+            t += last - first + 1;
+            const std::uint32_t begin2 = sorted_.cell_start(column + std::size_t(first));
+            const std::uint32_t end2 = sorted_.cell_end(column + std::size_t(last));
+            if (begin2 != end2) {
+                const bool own = own_row && sc == 0 && first <= cc && cc <= last;
+                piece(begin2, end2, own, sa, sb, sc);
+            }
+        }
+    }
+}
+
 template <bool Half, class Emit>
 void NeighborSearch::traverse_sorted(Emit&& emit, std::size_t cell_begin,
                                      std::size_t cell_end) const {
@@ -84,82 +133,37 @@ void NeighborSearch::traverse_sorted(Emit&& emit, std::size_t cell_begin,
     const std::int32_t* image = sorted_image_.data();
     const std::uint32_t* order = sorted_.order().data();
     const double cutoff_sq = cutoff_sq_;
-    const std::array<int, 3>& n = grid_.dims();
-    const std::array<int, 3>& m = grid_.reach();
-    const bool periodic_c = grid_.periodicity()[2];
-
     for (std::size_t c1 = cell_begin; c1 < cell_end; ++c1) {
         const std::uint32_t begin1 = sorted_.cell_start(c1), end1 = sorted_.cell_end(c1);
         if (begin1 == end1) {
             continue;
         }
-        const int cc = int(c1 % std::size_t(n[2]));
-        const int cb = int((c1 / std::size_t(n[2])) % std::size_t(n[1]));
-        const int ca = int(c1 / (std::size_t(n[2]) * std::size_t(n[1])));
-        for (const StencilRow& row : rows_) {
-            const std::size_t ta = std::size_t(ca + row.da + m[0]);
-            const std::size_t tb = std::size_t(cb + row.db + m[1]);
-            const int na = neighbor_cell_[0][ta];
-            const int nb = neighbor_cell_[1][tb];
-            if (na < 0 || nb < 0) {
-                continue; // beyond the end of an open axis
-            }
-            const int sa = neighbor_shift_[0][ta];
-            const int sb = neighbor_shift_[1][tb];
-            const std::size_t column = grid_.flat(na, nb, 0);
-            const bool own_row = row.da == 0 && row.db == 0;
-            // Walk t = cc + dc over the row, one piece per image along c.
-            int t = cc + row.dc_lo;
-            const int t_end = cc + row.dc_hi;
-            if (!periodic_c) {
-                t = std::max(t, 0);
-            }
-            while (t <= t_end) {
-                int sc = 0, first = t, last = t_end;
-                if (periodic_c) {
-                    sc = floor_div(t, n[2]);
-                    first = t - sc * n[2];
-                    last = std::min(t_end - sc * n[2], n[2] - 1);
+        for_each_row_piece(c1, [&](std::uint32_t begin2, std::uint32_t end2, bool own, int sa,
+                                   int sb, int sc) {
+            const Eigen::Vector3d shift_vector = h_.col(0) * sa + h_.col(1) * sb + h_.col(2) * sc;
+            for (std::uint32_t a = begin1; a < end1; ++a) {
+                // D = x_b + H shift - x_a = x_b - (x_a - H shift)
+                const double ax = x[a] - shift_vector.x();
+                const double ay = y[a] - shift_vector.y();
+                const double az = z[a] - shift_vector.z();
+                const int base[3] = {sa + image[3 * a], sb + image[3 * a + 1],
+                                     sc + image[3 * a + 2]};
+                const std::uint32_t i = order[a];
+                auto hit = [&](std::uint32_t b, double dx, double dy, double dz, double d_sq) {
+                    emit(i, order[b], base[0] - image[3 * b], base[1] - image[3 * b + 1],
+                         base[2] - image[3 * b + 2], dx, dy, dz, d_sq);
+                };
+                if (!own) {
+                    detail::scan_range(x, y, z, begin2, end2, ax, ay, az, cutoff_sq, hit);
+                } else if (Half) {
+                    // The half row starts at the own cell: pairs with later atoms only.
+                    detail::scan_range(x, y, z, a + 1, end2, ax, ay, az, cutoff_sq, hit);
                 } else {
-                    last = std::min(t_end, n[2] - 1);
-                    if (first > last) {
-                        break;
-                    }
-                }
-                t += last - first + 1;
-                const std::uint32_t begin2 = sorted_.cell_start(column + std::size_t(first));
-                const std::uint32_t end2 = sorted_.cell_end(column + std::size_t(last));
-                if (begin2 == end2) {
-                    continue;
-                }
-                const bool own = own_row && sc == 0 && first <= cc && cc <= last;
-                const Eigen::Vector3d shift_vector =
-                    h_.col(0) * sa + h_.col(1) * sb + h_.col(2) * sc;
-                for (std::uint32_t a = begin1; a < end1; ++a) {
-                    // D = x_b + H shift - x_a = x_b - (x_a - H shift)
-                    const double ax = x[a] - shift_vector.x();
-                    const double ay = y[a] - shift_vector.y();
-                    const double az = z[a] - shift_vector.z();
-                    const int base[3] = {sa + image[3 * a], sb + image[3 * a + 1],
-                                         sc + image[3 * a + 2]};
-                    const std::uint32_t i = order[a];
-                    auto hit = [&](std::uint32_t b, double dx, double dy, double dz,
-                                   double d_sq) {
-                        emit(i, order[b], base[0] - image[3 * b], base[1] - image[3 * b + 1],
-                             base[2] - image[3 * b + 2], dx, dy, dz, d_sq);
-                    };
-                    if (!own) {
-                        detail::scan_range(x, y, z, begin2, end2, ax, ay, az, cutoff_sq, hit);
-                    } else if (Half) {
-                        // The half row starts at the own cell: pairs with later atoms only.
-                        detail::scan_range(x, y, z, a + 1, end2, ax, ay, az, cutoff_sq, hit);
-                    } else {
-                        detail::scan_range(x, y, z, begin2, a, ax, ay, az, cutoff_sq, hit);
-                        detail::scan_range(x, y, z, a + 1, end2, ax, ay, az, cutoff_sq, hit);
-                    }
+                    detail::scan_range(x, y, z, begin2, a, ax, ay, az, cutoff_sq, hit);
+                    detail::scan_range(x, y, z, a + 1, end2, ax, ay, az, cutoff_sq, hit);
                 }
             }
-        }
+        });
     }
 }
 
@@ -187,8 +191,7 @@ void NeighborSearch::traverse_linked(Emit&& emit, std::size_t cell_begin,
                 const double dx = r[3 * b] - ax, dy = r[3 * b + 1] - ay, dz = r[3 * b + 2] - az;
                 const double d_sq = dx * dx + dy * dy + dz * dz;
                 if (d_sq < cutoff_sq) {
-                    emit(std::uint32_t(a), std::uint32_t(b),
-                         shift[0] + image[3 * a] - image[3 * b],
+                    emit(std::uint32_t(a), std::uint32_t(b), shift[0] + image[3 * a] - image[3 * b],
                          shift[1] + image[3 * a + 1] - image[3 * b + 1],
                          shift[2] + image[3 * a + 2] - image[3 * b + 2], dx, dy, dz, d_sq);
                 }
