@@ -20,11 +20,11 @@ constexpr double search_margin = 1e-9;
 
 // Reorders v in place so that v[k] becomes old v[perm[k]], for `width` values per pair.
 template <class T>
-void gather(std::vector<T>& v, const std::vector<std::size_t>& perm, std::size_t width) {
+void gather(PairArray<T>& v, const std::vector<std::size_t>& perm, std::size_t width) {
     if (v.empty()) {
         return;
     }
-    std::vector<T> out(v.size());
+    PairArray<T> out(v.size());
     for (std::size_t k = 0; k < perm.size(); ++k) {
         for (std::size_t w = 0; w < width; ++w) {
             out[width * k + w] = v[width * perm[k] + w];
@@ -220,9 +220,9 @@ namespace {
 // grow past `limit` pairs (0: no limit).
 class PairSink {
   public:
-    PairSink(std::vector<std::uint32_t>& i, std::vector<std::uint32_t>& j,
-             std::vector<std::int32_t>* shifts, std::vector<double>* distances,
-             std::vector<double>* vectors, std::size_t limit, std::size_t initial)
+    PairSink(PairArray<std::uint32_t>& i, PairArray<std::uint32_t>& j,
+             PairArray<std::int32_t>* shifts, PairArray<double>* distances,
+             PairArray<double>* vectors, std::size_t limit, std::size_t initial)
         : i_(i), j_(j), shifts_(shifts), distances_(distances), vectors_(vectors), limit_(limit) {
         resize(limit_ != 0 ? std::min(initial, limit_) : initial);
     }
@@ -287,11 +287,11 @@ class PairSink {
         }
     }
 
-    std::vector<std::uint32_t>& i_;
-    std::vector<std::uint32_t>& j_;
-    std::vector<std::int32_t>* shifts_;
-    std::vector<double>* distances_;
-    std::vector<double>* vectors_;
+    PairArray<std::uint32_t>& i_;
+    PairArray<std::uint32_t>& j_;
+    PairArray<std::int32_t>* shifts_;
+    PairArray<double>* distances_;
+    PairArray<double>* vectors_;
     std::uint32_t* pi_ = nullptr;
     std::uint32_t* pj_ = nullptr;
     std::int32_t* ps_ = nullptr;
@@ -302,8 +302,8 @@ class PairSink {
 
 // Sorts a list by i, then j, then S (counting sort by i, then each atom's pairs by (j, S)) and
 // fills its CSR offsets.
-void sort_pairs(std::vector<std::uint32_t>& is, std::vector<std::uint32_t>& js,
-                std::vector<std::int32_t>& ss, std::vector<double>& ds, std::vector<double>& vs,
+void sort_pairs(PairArray<std::uint32_t>& is, PairArray<std::uint32_t>& js,
+                PairArray<std::int32_t>& ss, PairArray<double>& ds, PairArray<double>& vs,
                 std::vector<std::size_t>& offsets, std::size_t atom_count) {
     const std::size_t pairs = is.size();
     offsets.assign(atom_count + 1, 0);

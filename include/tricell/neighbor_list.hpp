@@ -21,6 +21,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -79,19 +80,37 @@ struct Pair {
     double distance() const { return std::sqrt(distance_sq); }
 };
 
+namespace detail {
+/// An allocator that leaves new elements of trivial types uninitialised, so that growing a pair
+/// array does not first write zeros over memory that is about to be overwritten.
+template <class T> struct UninitializedAllocator : std::allocator<T> {
+    template <class U> struct rebind { using other = UninitializedAllocator<U>; };
+    UninitializedAllocator() = default;
+    template <class U>
+    UninitializedAllocator(const UninitializedAllocator<U>&) noexcept {} // NOLINT
+    template <class U> void construct(U* p) noexcept { ::new (static_cast<void*>(p)) U; }
+    template <class U, class... Args> void construct(U* p, Args&&... args) {
+        ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+    }
+};
+} // namespace detail
+
+/// The array type of a NeighborList's columns: a std::vector whose growth skips zero-filling.
+template <class T> using PairArray = std::vector<T, detail::UninitializedAllocator<T>>;
+
 /// Stored pairs, struct-of-arrays. Reuse one object across calls to keep its buffers.
 class TRICELL_API NeighborList {
   public:
     std::size_t size() const { return i_.size(); }
     bool empty() const { return i_.empty(); }
-    const std::vector<std::uint32_t>& i() const { return i_; }
-    const std::vector<std::uint32_t>& j() const { return j_; }
+    const PairArray<std::uint32_t>& i() const { return i_; }
+    const PairArray<std::uint32_t>& j() const { return j_; }
     /// 3 ints per pair (Sa, Sb, Sc), empty unless Quantities::shifts.
-    const std::vector<std::int32_t>& shifts() const { return shifts_; }
+    const PairArray<std::int32_t>& shifts() const { return shifts_; }
     /// Empty unless Quantities::distances.
-    const std::vector<double>& distances() const { return distances_; }
+    const PairArray<double>& distances() const { return distances_; }
     /// 3 doubles per pair (Dx, Dy, Dz), empty unless Quantities::vectors.
-    const std::vector<double>& vectors() const { return vectors_; }
+    const PairArray<double>& vectors() const { return vectors_; }
     /// With sorted output: pairs of atom i are [offsets[i], offsets[i + 1]). Empty otherwise.
     const std::vector<std::size_t>& offsets() const { return offsets_; }
 
@@ -106,9 +125,9 @@ class TRICELL_API NeighborList {
 
   private:
     friend class NeighborSearch;
-    std::vector<std::uint32_t> i_, j_;
-    std::vector<std::int32_t> shifts_;
-    std::vector<double> distances_, vectors_;
+    PairArray<std::uint32_t> i_, j_;
+    PairArray<std::int32_t> shifts_;
+    PairArray<double> distances_, vectors_;
     std::vector<std::size_t> offsets_;
 };
 

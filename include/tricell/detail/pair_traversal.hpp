@@ -19,13 +19,16 @@ namespace tricell {
 namespace detail {
 
 /// Calls hit(b, dx, dy, dz, d_sq) for every b in [from, to) with |x_b - a| < cutoff. Distances
-/// are computed in blocks (a branch-free loop the compiler vectorises), then hits are compacted.
+/// are computed in blocks by a branch-free loop the compiler vectorises; the hits are compacted
+/// without branches (the index is written always, the count advances only on a hit), so the
+/// unpredictable cutoff test never costs a mispredicted branch.
 template <class Hit>
 inline void scan_range(const double* x, const double* y, const double* z, std::uint32_t from,
                        std::uint32_t to, double ax, double ay, double az, double cutoff_sq,
                        Hit&& hit) {
     constexpr std::uint32_t block = 64;
     double d_sq[block];
+    std::uint32_t hits[block];
     for (std::uint32_t start = from; start < to; start += block) {
         const std::uint32_t count = std::min(block, to - start);
         const double* xs = x + start;
@@ -35,10 +38,14 @@ inline void scan_range(const double* x, const double* y, const double* z, std::u
             const double dx = xs[k] - ax, dy = ys[k] - ay, dz = zs[k] - az;
             d_sq[k] = dx * dx + dy * dy + dz * dz;
         }
+        std::uint32_t found = 0;
         for (std::uint32_t k = 0; k < count; ++k) {
-            if (d_sq[k] < cutoff_sq) {
-                hit(start + k, xs[k] - ax, ys[k] - ay, zs[k] - az, d_sq[k]);
-            }
+            hits[found] = k;
+            found += d_sq[k] < cutoff_sq ? 1u : 0u;
+        }
+        for (std::uint32_t h = 0; h < found; ++h) {
+            const std::uint32_t k = hits[h];
+            hit(start + k, xs[k] - ax, ys[k] - ay, zs[k] - az, d_sq[k]);
         }
     }
 }
@@ -213,15 +220,15 @@ void NeighborSearch::traverse(Emit&& emit, std::size_t cell_begin, std::size_t c
         return;
     }
     // Half list: report (i, j, S) with i < j, or i == j and S lexicographically positive.
+    // Whether to flip is a coin toss per pair, so it selects values instead of branching.
     auto canonical = [&](std::uint32_t i, std::uint32_t j, int sa, int sb, int sc, double dx,
                          double dy, double dz, double d_sq) {
         const bool flip =
             i > j || (i == j && (sa < 0 || (sa == 0 && (sb < 0 || (sb == 0 && sc < 0)))));
-        if (flip) {
-            emit(j, i, -sa, -sb, -sc, -dx, -dy, -dz, d_sq);
-        } else {
-            emit(i, j, sa, sb, sc, dx, dy, dz, d_sq);
-        }
+        const int sign = flip ? -1 : 1;
+        const double real_sign = flip ? -1.0 : 1.0;
+        emit(flip ? j : i, flip ? i : j, sign * sa, sign * sb, sign * sc, real_sign * dx,
+             real_sign * dy, real_sign * dz, d_sq);
     };
     if (sorted) {
         traverse_sorted<true>(canonical, cell_begin, cell_end);
