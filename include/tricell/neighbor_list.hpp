@@ -54,7 +54,7 @@ struct NeighborOptions {
     bool sorted = false;
     Quantities quantities;
     /// Target cells per cutoff along each axis (>= 1). Never changes the result, only the speed.
-    double cells_per_cutoff = 2;
+    double cells_per_cutoff = 1;
     CellListKind cell_list = CellListKind::sorted;
     /// Refuse (InvalidArgument) when the estimated or actual number of stored pairs exceeds this;
     /// 0 means no limit. The default, 5e8 pairs, is about 14 GB of i, j, S, d.

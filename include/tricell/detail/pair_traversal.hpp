@@ -14,38 +14,30 @@
 #include <cstdint>
 #include <utility>
 
+#include "tricell/detail/distance_kernel.hpp"
+
 namespace tricell {
 
 namespace detail {
 
-/// Calls hit(b, dx, dy, dz, d_sq) for every b in [from, to) with |x_b - a| < cutoff. Distances
-/// are computed in blocks by a branch-free loop the compiler vectorises; the hits are compacted
-/// without branches (the index is written always, the count advances only on a hit), so the
-/// unpredictable cutoff test never costs a mispredicted branch.
+/// Calls hit(b, dx, dy, dz, d_sq) for every b in [from, to) with |x_b - a| < cutoff, in blocks
+/// through the run-time selected distance kernel (tricell/detail/distance_kernel.hpp).
 template <class Hit>
 inline void scan_range(const double* x, const double* y, const double* z, std::uint32_t from,
                        std::uint32_t to, double ax, double ay, double az, double cutoff_sq,
                        Hit&& hit) {
-    constexpr std::uint32_t block = 64;
-    double d_sq[block];
-    std::uint32_t hits[block];
-    for (std::uint32_t start = from; start < to; start += block) {
-        const std::uint32_t count = std::min(block, to - start);
+    std::uint32_t hits[kernel_block + 4];
+    double hit_d_sq[kernel_block + 4];
+    for (std::uint32_t start = from; start < to; start += kernel_block) {
+        const std::uint32_t count = std::min(kernel_block, to - start);
         const double* xs = x + start;
         const double* ys = y + start;
         const double* zs = z + start;
-        for (std::uint32_t k = 0; k < count; ++k) {
-            const double dx = xs[k] - ax, dy = ys[k] - ay, dz = zs[k] - az;
-            d_sq[k] = dx * dx + dy * dy + dz * dz;
-        }
-        std::uint32_t found = 0;
-        for (std::uint32_t k = 0; k < count; ++k) {
-            hits[found] = k;
-            found += d_sq[k] < cutoff_sq ? 1u : 0u;
-        }
+        const std::uint32_t found =
+            within_cutoff(xs, ys, zs, count, ax, ay, az, cutoff_sq, hits, hit_d_sq);
         for (std::uint32_t h = 0; h < found; ++h) {
             const std::uint32_t k = hits[h];
-            hit(start + k, xs[k] - ax, ys[k] - ay, zs[k] - az, d_sq[k]);
+            hit(start + k, xs[k] - ax, ys[k] - ay, zs[k] - az, hit_d_sq[h]);
         }
     }
 }

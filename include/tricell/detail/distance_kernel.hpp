@@ -1,0 +1,32 @@
+// The innermost loop of the neighbour search: which points of a contiguous struct-of-arrays
+// range lie within the cutoff of one point. Compiled once per instruction set in the library
+// and chosen at run time (AVX2 where the processor has it, SSE2 otherwise), so the default
+// build stays portable. Both versions compute d^2 = dx*dx + dy*dy + dz*dz in the same order
+// without fused multiply-adds, so their results are bit for bit the same.
+#pragma once
+
+#include <cstdint>
+
+#include "tricell/export.hpp"
+
+namespace tricell::detail {
+
+/// Largest `count` within_cutoff() accepts; `hits` and `hit_d_sq` need count + 4 slots.
+constexpr std::uint32_t kernel_block = 64;
+
+/// For k in [0, count): if (x[k]-ax)^2 + (y[k]-ay)^2 + (z[k]-az)^2 < cutoff_sq, appends k to
+/// hits and the squared distance to hit_d_sq. Returns the number of hits. count <= kernel_block.
+TRICELL_API std::uint32_t within_cutoff(const double* x, const double* y, const double* z,
+                                        std::uint32_t count, double ax, double ay, double az,
+                                        double cutoff_sq, std::uint32_t* hits, double* hit_d_sq);
+
+/// The portable version of within_cutoff(), whatever the processor (for tests).
+TRICELL_API std::uint32_t within_cutoff_portable(const double* x, const double* y, const double* z,
+                                                 std::uint32_t count, double ax, double ay,
+                                                 double az, double cutoff_sq, std::uint32_t* hits,
+                                                 double* hit_d_sq);
+
+/// Name of the kernel chosen on this processor ("avx2" or "generic").
+TRICELL_API const char* distance_kernel_name();
+
+} // namespace tricell::detail

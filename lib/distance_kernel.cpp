@@ -1,0 +1,137 @@
+#include "tricell/detail/distance_kernel.hpp"
+
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define TRICELL_HAVE_AVX2_KERNEL 1
+#include <immintrin.h>
+#endif
+
+namespace tricell::detail {
+
+namespace {
+
+using Kernel = std::uint32_t (*)(const double*, const double*, const double*, std::uint32_t, double,
+                                 double, double, double, std::uint32_t*, double*);
+
+// Portable version: a vectorisable distance loop, then a branch-free compaction (the index is
+// always written, the count advances only on a hit).
+std::uint32_t within_cutoff_generic(const double* x, const double* y, const double* z,
+                                    std::uint32_t count, double ax, double ay, double az,
+                                    double cutoff_sq, std::uint32_t* hits, double* hit_d_sq) {
+    double d_sq[kernel_block];
+    for (std::uint32_t k = 0; k < count; ++k) {
+        const double dx = x[k] - ax, dy = y[k] - ay, dz = z[k] - az;
+        d_sq[k] = dx * dx + dy * dy + dz * dz;
+    }
+    std::uint32_t found = 0;
+    for (std::uint32_t k = 0; k < count; ++k) {
+        hits[found] = k;
+        hit_d_sq[found] = d_sq[k];
+        found += d_sq[k] < cutoff_sq ? 1u : 0u;
+    }
+    return found;
+}
+
+#ifdef TRICELL_HAVE_AVX2_KERNEL
+
+// Lane order that moves the set lanes of a 4-bit mask to the front, as 32-bit lane indices for
+// doubles (two lanes each) and as plain positions for the indices.
+struct CompressTables {
+    alignas(32) std::int32_t doubles[16][8];
+    alignas(16) std::int32_t positions[16][4];
+    CompressTables() {
+        for (int mask = 0; mask < 16; ++mask) {
+            int n = 0;
+            for (int lane = 0; lane < 4; ++lane) {
+                if (mask & (1 << lane)) {
+                    positions[mask][n] = lane;
+                    doubles[mask][2 * n] = 2 * lane;
+                    doubles[mask][2 * n + 1] = 2 * lane + 1;
+                    ++n;
+                }
+            }
+            for (; n < 4; ++n) {
+                positions[mask][n] = 0;
+                doubles[mask][2 * n] = 0;
+                doubles[mask][2 * n + 1] = 1;
+            }
+        }
+    }
+};
+
+const CompressTables compress_tables;
+
+// AVX2: four distances at a time (mul and add, no FMA, same order as the generic loop), then the
+// hits are compressed with a lane permutation from a 16-entry table: no branch per hit.
+__attribute__((target("avx2"))) std::uint32_t
+within_cutoff_avx2(const double* x, const double* y, const double* z, std::uint32_t count,
+                   double ax, double ay, double az, double cutoff_sq, std::uint32_t* hits,
+                   double* hit_d_sq) {
+    const __m256d vax = _mm256_set1_pd(ax), vay = _mm256_set1_pd(ay), vaz = _mm256_set1_pd(az);
+    const __m256d vcut = _mm256_set1_pd(cutoff_sq);
+    std::uint32_t found = 0;
+    std::uint32_t k = 0;
+    for (; k + 4 <= count; k += 4) {
+        const __m256d dx = _mm256_sub_pd(_mm256_loadu_pd(x + k), vax);
+        const __m256d dy = _mm256_sub_pd(_mm256_loadu_pd(y + k), vay);
+        const __m256d dz = _mm256_sub_pd(_mm256_loadu_pd(z + k), vaz);
+        const __m256d d_sq = _mm256_add_pd(
+            _mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy)), _mm256_mul_pd(dz, dz));
+        const int mask = _mm256_movemask_pd(_mm256_cmp_pd(d_sq, vcut, _CMP_LT_OQ));
+        const __m256i order =
+            _mm256_load_si256(reinterpret_cast<const __m256i*>(compress_tables.doubles[mask]));
+        _mm256_storeu_pd(hit_d_sq + found,
+                         _mm256_castps_pd(_mm256_permutevar8x32_ps(_mm256_castpd_ps(d_sq), order)));
+        const __m128i positions = _mm_add_epi32(
+            _mm_load_si128(reinterpret_cast<const __m128i*>(compress_tables.positions[mask])),
+            _mm_set1_epi32(static_cast<int>(k)));
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(hits + found), positions);
+        found += static_cast<std::uint32_t>(__builtin_popcount(static_cast<unsigned>(mask)));
+    }
+    for (; k < count; ++k) {
+        const double dx = x[k] - ax, dy = y[k] - ay, dz = z[k] - az;
+        const double d_sq = dx * dx + dy * dy + dz * dz;
+        hits[found] = k;
+        hit_d_sq[found] = d_sq;
+        found += d_sq < cutoff_sq ? 1u : 0u;
+    }
+    return found;
+}
+
+#endif
+
+Kernel choose_kernel() {
+#ifdef TRICELL_HAVE_AVX2_KERNEL
+    __builtin_cpu_init();
+    if (__builtin_cpu_supports("avx2")) {
+        return within_cutoff_avx2;
+    }
+#endif
+    return within_cutoff_generic;
+}
+
+const Kernel kernel = choose_kernel();
+
+} // namespace
+
+std::uint32_t within_cutoff(const double* x, const double* y, const double* z, std::uint32_t count,
+                            double ax, double ay, double az, double cutoff_sq, std::uint32_t* hits,
+                            double* hit_d_sq) {
+    return kernel(x, y, z, count, ax, ay, az, cutoff_sq, hits, hit_d_sq);
+}
+
+std::uint32_t within_cutoff_portable(const double* x, const double* y, const double* z,
+                                     std::uint32_t count, double ax, double ay, double az,
+                                     double cutoff_sq, std::uint32_t* hits, double* hit_d_sq) {
+    return within_cutoff_generic(x, y, z, count, ax, ay, az, cutoff_sq, hits, hit_d_sq);
+}
+
+const char* distance_kernel_name() {
+#ifdef TRICELL_HAVE_AVX2_KERNEL
+    if (kernel == within_cutoff_avx2) {
+        return "avx2";
+    }
+#endif
+    return "generic";
+}
+
+} // namespace tricell::detail
