@@ -249,9 +249,19 @@ MinimumImage Box::minimum_image(const Cartesian& d) const {
     // |m_l| <= 2 |start| sqrt((G^-1)_ll) with G = B^T B.
     const double radius = start.norm();
     int bound[3] = {0, 0, 0};
+    double candidates = 1;
     for (int l = 0; l < k; ++l) {
-        bound[l] = static_cast<int>(
-            std::floor(2.0 * radius * std::sqrt(reduced_gram_inv_(l, l)) * (1 + 1e-12)));
+        const double reach =
+            std::floor(2.0 * radius * std::sqrt(reduced_gram_inv_(l, l)) * (1 + 1e-12));
+        candidates *= 2 * reach + 1;
+        if (!(candidates <= 1e7)) {
+            detail::fail<GeometryError>(
+                "box is too skewed for an exact minimum image (more than 1e7 lattice "
+                "translates to search; lattice vectors a = (",
+                h_(0, 0), ", ", h_(1, 0), ", ", h_(2, 0), "), b = (", h_(0, 1), ", ", h_(1, 1),
+                ", ", h_(2, 1), "), c = (", h_(0, 2), ", ", h_(1, 2), ", ", h_(2, 2), "))");
+        }
+        bound[l] = static_cast<int>(reach);
     }
     Eigen::Vector3d best_vector = start;
     double best_sq = start.squaredNorm();
@@ -270,8 +280,13 @@ MinimumImage Box::minimum_image(const Cartesian& d) const {
             }
         }
     }
-    const Eigen::Vector3i reduced_shift = rounded + best_m;
-    best.shift = reduced_to_h_ * reduced_shift;
+    const Eigen::Matrix<long long, 3, 1> shift =
+        reduced_to_h_.cast<long long>() * (rounded + best_m).cast<long long>();
+    if (shift.cwiseAbs().maxCoeff() > std::numeric_limits<int>::max()) {
+        detail::fail<InvalidArgument>("displacement (", d.x(), ", ", d.y(), ", ", d.z(),
+                                      ") is too many box lengths away for a minimum image");
+    }
+    best.shift = shift.cast<int>();
     // Recompute from the integer shift so vector == d + H * shift up to one rounding.
     best.vector =
         Cartesian(static_cast<const Eigen::Vector3d&>(d) + h_ * best.shift.cast<double>());

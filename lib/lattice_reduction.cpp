@@ -12,8 +12,11 @@ ReducedBasis reduce_basis(const Eigen::Matrix3d& basis, int count) {
         out.transform(k, k) = 1;
     }
     // Each accepted step shortens a vector by a relative margin, so this terminates; the cap
-    // only guards against pathological floating-point input.
+    // only guards against pathological floating-point input. A step whose integer coefficients
+    // would leave a comfortable int range is skipped: the basis is then less reduced, which
+    // costs search time in callers but never exactness.
     constexpr int max_sweeps = 200;
+    constexpr long long max_coefficient = 1LL << 30;
     for (int sweep = 0; sweep < max_sweeps; ++sweep) {
         bool changed = false;
         for (int i = 0; i < count; ++i) {
@@ -23,13 +26,19 @@ ReducedBasis reduce_basis(const Eigen::Matrix3d& basis, int count) {
                 }
                 const double norm_j_sq = out.vectors.col(j).squaredNorm();
                 const double q = std::round(out.vectors.col(i).dot(out.vectors.col(j)) / norm_j_sq);
-                if (q == 0.0 || std::abs(q) > 1e9) {
+                if (q == 0.0 || !(std::abs(q) <= double(max_coefficient))) {
+                    continue;
+                }
+                const Eigen::Matrix<long long, 3, 1> column =
+                    out.transform.col(i).cast<long long>() -
+                    static_cast<long long>(q) * out.transform.col(j).cast<long long>();
+                if (column.cwiseAbs().maxCoeff() > max_coefficient) {
                     continue;
                 }
                 const Eigen::Vector3d candidate = out.vectors.col(i) - q * out.vectors.col(j);
                 if (candidate.squaredNorm() < out.vectors.col(i).squaredNorm() * (1 - 1e-12)) {
                     out.vectors.col(i) = candidate;
-                    out.transform.col(i) -= static_cast<int>(q) * out.transform.col(j);
+                    out.transform.col(i) = column.cast<int>();
                     changed = true;
                 }
             }

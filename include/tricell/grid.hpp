@@ -34,7 +34,7 @@ inline int floor_mod(int a, int n) {
     return a - floor_div(a, n) * n;
 }
 
-struct GridOptions {
+struct TRICELL_API GridOptions {
     /// Search radius r (the cutoff, or cutoff + skin); must be > 0.
     double search_radius = 0;
     /// Target cells per search radius along each axis (h = r / k); must be >= 1.

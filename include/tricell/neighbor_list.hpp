@@ -45,7 +45,7 @@ struct Quantities {
     bool vectors = false;  ///< D, three doubles per pair
 };
 
-struct NeighborOptions {
+struct TRICELL_API NeighborOptions {
     /// Pairs with |D| < cutoff (strict) are reported. Must be finite and > 0.
     double cutoff = 0;
     /// Report each pair once (canonical orientation) instead of both orientations.

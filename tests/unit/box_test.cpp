@@ -380,3 +380,17 @@ TEST(Box, RejectsBadLatticeParameters) {
     EXPECT_THROW_MSG(Box::from_lammps(1, 0, 1, 0, 0, 0), tricell::InvalidArgument,
                      "ly must be > 0 (got 0)");
 }
+
+TEST(Box, ExtremelySkewedBoxNeitherOverflowsNorHangs) {
+    // Found by fuzzing the command line's inputs: reduction coefficients beyond int range.
+    Eigen::Matrix3d rows;
+    rows << 0, 2.7155, 2.155e9, //
+        2.7155, 0, 2.7155,      //
+        5.5e7, 2.7155, 0;
+    const Box box = Box::from_rows(rows);
+    const tricell::MinimumImage mi = box.minimum_image(Cartesian(1.0, 1.0, 1.0));
+    EXPECT_LE(mi.distance, std::sqrt(3.0) + 1e-9);
+    EXPECT_LT(
+        (mi.vector - (Eigen::Vector3d(1, 1, 1) + box.matrix() * mi.shift.cast<double>())).norm(),
+        1e-6);
+}

@@ -25,7 +25,7 @@ struct BondCutoff {
     double cutoff = 0;
 };
 
-struct CoordinationOptions {
+struct TRICELL_IO_API CoordinationOptions {
     /// Cutoff for every pair not listed in `bonds`; 0 means such pairs never count.
     double cutoff = 0;
     /// Per-element-pair cutoffs. Element symbols in any case ("si" is "Si").
@@ -44,7 +44,7 @@ struct Coordination {
 };
 
 /// One entry per atom, in the structure's order.
-TRICELL_IO_API std::vector<Coordination> coordination(const Structure &structure,
-                                                      const CoordinationOptions &options);
+TRICELL_IO_API std::vector<Coordination> coordination(const Structure& structure,
+                                                      const CoordinationOptions& options);
 
 } // namespace tricell::io

@@ -59,7 +59,7 @@ struct Structure {
     std::size_t size() const { return positions.size(); }
 };
 
-struct ReadOptions {
+struct TRICELL_IO_API ReadOptions {
     /// File format; empty means guess it from the file name (format_from_name).
     std::optional<Format> format;
     /// CIF expansion: symmetry images of one atom-site row closer than this (Angstrom,
@@ -73,34 +73,34 @@ struct ReadOptions {
 };
 
 /// Reads the file at `path`. Throws ParseError (also when the file cannot be opened).
-TRICELL_IO_API Structure read_structure(const std::string &path, const ReadOptions &options = {});
+TRICELL_IO_API Structure read_structure(const std::string& path, const ReadOptions& options = {});
 
 /// Parses `text` as the contents of a file called `name` (used for the format guess and in
 /// error messages).
-TRICELL_IO_API Structure parse_structure(const std::string &text, const std::string &name,
-                                         const ReadOptions &options = {});
+TRICELL_IO_API Structure parse_structure(const std::string& text, const std::string& name,
+                                         const ReadOptions& options = {});
 
 /// Format from a file name: *.cif; *.xyz, *.extxyz; POSCAR*, CONTCAR*, *.vasp, *.poscar
 /// (case-insensitive). Throws ParseError(path, 0, ...) for anything else.
-TRICELL_IO_API Format format_from_name(const std::string &path);
+TRICELL_IO_API Format format_from_name(const std::string& path);
 
 /// Format from its name as a user types it: "cif", "xyz" or "extxyz", "poscar" or "vasp"
 /// (case-insensitive). Throws InvalidArgument otherwise.
-TRICELL_IO_API Format parse_format(const std::string &name);
+TRICELL_IO_API Format parse_format(const std::string& name);
 
 /// "cif", "xyz" or "poscar".
-TRICELL_IO_API const char *format_name(Format format);
+TRICELL_IO_API const char* format_name(Format format);
 
 /// Canonical element symbol for a token: an element symbol in any case ("si", "SI" give "Si")
 /// or, when allow_number is set, an atomic number ("14"). Empty when it is neither.
-TRICELL_IO_API std::string element_symbol(const std::string &token, bool allow_number = false);
+TRICELL_IO_API std::string element_symbol(const std::string& token, bool allow_number = false);
 
 /// Chemical formula of the whole structure in Hill order (C, then H, then the others
 /// alphabetically; alphabetical throughout without C), counts weighted by occupancy and
 /// printed with up to 6 significant digits, 1 omitted: "O6 Si3", "Fe3.768 O4".
-TRICELL_IO_API std::string formula(const Structure &structure);
+TRICELL_IO_API std::string formula(const Structure& structure);
 
 /// Sum of the occupancies (the occupancy-weighted atom count).
-TRICELL_IO_API double occupied_count(const Structure &structure);
+TRICELL_IO_API double occupied_count(const Structure& structure);
 
 } // namespace tricell::io

@@ -28,11 +28,11 @@ struct SpaceGroupInfo {
 /// The space group of the structure with tolerance `symprec` (Angstrom). Throws
 /// InvalidArgument for symprec <= 0 or a box not periodic along all axes, and GeometryError
 /// when spglib finds no space group (the message carries spglib's reason).
-TRICELL_IO_API SpaceGroupInfo find_space_group(const Structure &structure, double symprec = 1e-5);
+TRICELL_IO_API SpaceGroupInfo find_space_group(const Structure& structure, double symprec = 1e-5);
 
 /// The Niggli-reduced cell of the lattice of `box` (same periodicity). Throws InvalidArgument
 /// for tolerance <= 0 or a box not periodic along all axes, GeometryError if spglib fails.
-TRICELL_IO_API Box niggli_reduce(const Box &box, double tolerance = 1e-5);
+TRICELL_IO_API Box niggli_reduce(const Box& box, double tolerance = 1e-5);
 
 /// Version of the spglib library linked in ("2.0.2").
 TRICELL_IO_API std::string spglib_version();

@@ -1,0 +1,134 @@
+// tricell bench: times the neighbour-list call on a structure file, inside the process.
+//
+// The structure is read once; the list is computed once as a warm-up and then K times into the
+// same reused NeighborList. Prints one "key value" line per measurement, for people and for
+// benchmarks/compare: pairs, median and minimum seconds, pairs per second, the size of the
+// stored arrays and the peak resident memory of the process.
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <tricell/neighbor_list.hpp>
+
+#include "cli.hpp"
+
+namespace tricell::cli {
+
+namespace {
+
+const char* const help =
+    R"(usage: tricell bench FILE --cutoff R [--half] [--quantities ijSdD] [--repeat K]
+                     [--threads T] [--input-format cif|xyz|poscar]
+
+Times tricell's neighbour list of FILE: one warm-up call, then K timed calls (default 10) into
+a reused list. Prints pairs, median_s, min_s, pairs_per_s, list_mb (the stored arrays) and
+peak_rss_mb (peak resident memory of the whole process), one "key value" per line.
+
+Options:
+  --cutoff R          cutoff, R > 0 (required)
+  --half              half list (each pair once)
+  --quantities Q      what to store besides i and j: any of S (shifts), d (distances),
+                      D (vectors); default "ijSd"
+  --repeat K          timed calls, K >= 1 (default 10)
+  --threads T         threads, T >= 0, 0 = all hardware threads (default 1)
+  --input-format F    cif, xyz or poscar, instead of the guess from the file name
+  -h, --help          this help
+)";
+
+double peak_rss_mb() {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    return double(usage.ru_maxrss) / 1024.0; // kilobytes on Linux
+}
+
+} // namespace
+
+int run_bench(const std::vector<std::string>& args) {
+    Arguments arguments("bench", args);
+    std::string file;
+    bool have_cutoff = false;
+    long repeat = 10;
+    io::ReadOptions read_options;
+    NeighborOptions options;
+    while (arguments.next()) {
+        if (arguments.flag("--help") || arguments.flag("-h")) {
+            std::fputs(help, stdout);
+            return 0;
+        } else if (arguments.option("--cutoff")) {
+            options.cutoff = arguments.real();
+            have_cutoff = true;
+        } else if (arguments.flag("--half")) {
+            options.half = true;
+        } else if (arguments.option("--quantities")) {
+            const std::string& q = arguments.value();
+            if (q.find_first_not_of("ijSdD") != std::string::npos) {
+                arguments.fail("--quantities takes letters of ijSdD, got '" + q + "'");
+            }
+            options.quantities.shifts = q.find('S') != std::string::npos;
+            options.quantities.distances = q.find('d') != std::string::npos;
+            options.quantities.vectors = q.find('D') != std::string::npos;
+        } else if (arguments.option("--repeat")) {
+            const double k = arguments.real();
+            if (k < 1 || k != double(long(k))) {
+                arguments.fail("--repeat must be a whole number >= 1, got '" + arguments.value() +
+                               "'");
+            }
+            repeat = long(k);
+        } else if (arguments.option("--threads")) {
+            const double t = arguments.real();
+            if (t < 0 || t != double(int(t))) {
+                arguments.fail("--threads must be a whole number >= 0, got '" + arguments.value() +
+                               "'");
+            }
+            options.threads = int(t);
+        } else if (arguments.option("--input-format")) {
+            read_options.format = input_format(arguments, arguments.value());
+        } else if (arguments.positional() && file.empty()) {
+            file = arguments.current();
+        } else {
+            arguments.unknown();
+        }
+    }
+    if (file.empty()) {
+        arguments.fail("missing FILE");
+    }
+    if (!have_cutoff) {
+        arguments.fail("missing --cutoff R");
+    }
+    options.validate();
+
+    const io::Structure structure = io::read_structure(file, read_options);
+    NeighborList list;
+    compute_neighbors(structure.box, structure.positions, options, list); // warm-up
+    std::vector<double> seconds;
+    for (long k = 0; k < repeat; ++k) {
+        const auto start = std::chrono::steady_clock::now();
+        compute_neighbors(structure.box, structure.positions, options, list);
+        const auto stop = std::chrono::steady_clock::now();
+        seconds.push_back(std::chrono::duration<double>(stop - start).count());
+    }
+    std::sort(seconds.begin(), seconds.end());
+    const double median = seconds[seconds.size() / 2];
+    const double list_bytes =
+        double(list.i().size() + list.j().size()) * sizeof(std::uint32_t) +
+        double(list.shifts().size()) * sizeof(std::int32_t) +
+        double(list.distances().size() + list.vectors().size()) * sizeof(double);
+    std::printf("file %s\n", file.c_str());
+    std::printf("atoms %zu\n", structure.size());
+    std::printf("cutoff %s\n", brief(options.cutoff).c_str());
+    std::printf("half %d\n", options.half ? 1 : 0);
+    std::printf("threads %d\n", options.threads);
+    std::printf("pairs %zu\n", list.size());
+    std::printf("median_s %.6g\n", median);
+    std::printf("min_s %.6g\n", seconds.front());
+    std::printf("pairs_per_s %.6g\n", double(list.size()) / median);
+    std::printf("list_mb %.3f\n", list_bytes / (1024.0 * 1024.0));
+    std::printf("peak_rss_mb %.3f\n", peak_rss_mb());
+    return 0;
+}
+
+} // namespace tricell::cli

@@ -1,0 +1,182 @@
+#include "cli.hpp"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <tricell/error.hpp>
+
+namespace tricell::cli {
+
+Arguments::Arguments(std::string command, std::vector<std::string> args)
+    : command_(std::move(command)), args_(std::move(args)) {}
+
+bool Arguments::next() {
+    if (started_) {
+        ++index_;
+    }
+    started_ = true;
+    if (index_ < args_.size() && !options_ended_ && args_[index_] == "--") {
+        options_ended_ = true;
+        ++index_;
+    }
+    return index_ < args_.size();
+}
+
+bool Arguments::flag(const char* name) {
+    const std::string& arg = current();
+    if (options_ended_) {
+        return false;
+    }
+    if (arg == name) {
+        return true;
+    }
+    if (arg.rfind(std::string(name) + "=", 0) == 0) {
+        fail(std::string(name) + " takes no value");
+    }
+    return false;
+}
+
+bool Arguments::option(const char* name) {
+    const std::string& arg = current();
+    if (options_ended_) {
+        return false;
+    }
+    const std::string prefix = std::string(name) + "=";
+    if (arg.rfind(prefix, 0) == 0) {
+        value_ = arg.substr(prefix.size());
+    } else if (arg == name) {
+        if (index_ + 1 >= args_.size()) {
+            fail(std::string(name) + " needs a value");
+        }
+        value_ = args_[++index_];
+    } else {
+        return false;
+    }
+    matched_ = name;
+    if (value_.empty()) {
+        fail(matched_ + " needs a value");
+    }
+    return true;
+}
+
+double Arguments::real() const {
+    const char* begin = value_.c_str();
+    char* end = nullptr;
+    errno = 0;
+    const double x = std::strtod(begin, &end);
+    if (end == begin || *end != '\0' || errno == ERANGE || !std::isfinite(x)) {
+        fail(matched_ + " expects a number, got '" + value_ + "'");
+    }
+    return x;
+}
+
+bool Arguments::positional() const {
+    const std::string& arg = current();
+    return options_ended_ || arg.empty() || arg[0] != '-' || arg == "-";
+}
+
+void Arguments::unknown() const {
+    if (positional()) {
+        fail("unexpected argument '" + current() + "'");
+    }
+    fail("unknown option '" + current() + "'");
+}
+
+void Arguments::fail(const std::string& message) const {
+    throw UsageError(command_ + ": " + message + " (see tricell " + command_ + " --help)");
+}
+
+io::Format input_format(const Arguments& arguments, const std::string& name) {
+    try {
+        return io::parse_format(name);
+    } catch (const Error& e) {
+        arguments.fail(std::string("--input-format: ") + e.what());
+    }
+}
+
+std::string exact(double value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.17g", value);
+    return text;
+}
+
+std::string brief(double value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.10g", value);
+    return text;
+}
+
+namespace {
+
+std::string system_error(const std::string& what, const std::string& path) {
+    return what + " " + path + " (" + std::strerror(errno) + ")";
+}
+
+} // namespace
+
+Output::Output(const std::string& path) : path_(path) {
+    if (path_.empty()) {
+        stream_ = stdout;
+        return;
+    }
+    // mkstemp in the directory of PATH, so that rename() is atomic.
+    std::string pattern = path_ + ".tmp.XXXXXX";
+    const int fd = ::mkstemp(pattern.data());
+    if (fd < 0) {
+        throw std::runtime_error(system_error("cannot create a temporary file for", path_));
+    }
+    temporary_ = pattern;
+    const mode_t mask = ::umask(0);
+    ::umask(mask);
+    ::fchmod(fd, 0666 & ~mask); // mkstemp makes 0600; give the file the usual permissions
+    stream_ = ::fdopen(fd, "w");
+    if (stream_ == nullptr) {
+        ::close(fd);
+        std::remove(temporary_.c_str());
+        throw std::runtime_error(system_error("cannot open a temporary file for", path_));
+    }
+}
+
+Output::~Output() {
+    if (!path_.empty() && !committed_) {
+        if (stream_ != nullptr) {
+            std::fclose(stream_);
+        }
+        std::remove(temporary_.c_str());
+    }
+}
+
+void Output::write(const std::string& text) {
+    std::fwrite(text.data(), 1, text.size(), stream_);
+}
+
+void Output::commit() {
+    if (path_.empty()) {
+        if (std::fflush(stdout) != 0 || std::ferror(stdout) != 0) {
+            throw std::runtime_error(std::string("cannot write to standard output (") +
+                                     std::strerror(errno) + ")");
+        }
+        committed_ = true;
+        return;
+    }
+    const bool written = std::fflush(stream_) == 0 && std::ferror(stream_) == 0;
+    const int error = errno;
+    const bool closed = std::fclose(stream_) == 0;
+    stream_ = nullptr;
+    if (!written || !closed) {
+        errno = written ? errno : error;
+        throw std::runtime_error(system_error("cannot write", path_));
+    }
+    if (std::rename(temporary_.c_str(), path_.c_str()) != 0) {
+        throw std::runtime_error(system_error("cannot write", path_));
+    }
+    committed_ = true;
+}
+
+} // namespace tricell::cli

@@ -1,0 +1,89 @@
+// Shared pieces of the `tricell` command: usage errors, a small argument cursor, reading the
+// input structure, real-number formatting and an output that is written completely or not at all.
+#pragma once
+
+#include <cstdio>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <tricell/io/structure.hpp>
+
+namespace tricell::cli {
+
+/// A malformed command line; main() prints it and exits with status 2.
+class UsageError : public std::runtime_error {
+  public:
+    using std::runtime_error::runtime_error;
+};
+
+/// Walks the arguments of a subcommand. Options take their value as the next argument or after
+/// '=' ("--cutoff 3" or "--cutoff=3"); "--" ends the options.
+class Arguments {
+  public:
+    Arguments(std::string command, std::vector<std::string> args);
+
+    /// Moves to the next argument; false at the end.
+    bool next();
+    /// The current argument is the flag `name` ("--half").
+    bool flag(const char* name);
+    /// The current argument is the option `name`; its value is then value().
+    bool option(const char* name);
+    /// Value of the option just matched.
+    const std::string& value() const { return value_; }
+    /// Value of the option just matched, as a finite real.
+    double real() const;
+    /// The current argument is a positional one (not starting with '-', or after "--").
+    bool positional() const;
+    const std::string& current() const { return args_[index_]; }
+    /// Throws UsageError for the current argument.
+    [[noreturn]] void unknown() const;
+    /// Throws UsageError with "COMMAND: message (see tricell COMMAND --help)".
+    [[noreturn]] void fail(const std::string& message) const;
+
+  private:
+    std::string command_;
+    std::vector<std::string> args_;
+    std::size_t index_ = 0;
+    bool started_ = false;
+    bool options_ended_ = false;
+    std::string value_;
+    std::string matched_;
+};
+
+/// Parses "cif", "xyz", "poscar", ... for --input-format (UsageError otherwise).
+io::Format input_format(const Arguments& arguments, const std::string& name);
+
+/// %.17g: reads back as the same double.
+std::string exact(double value);
+/// %.10g: for people.
+std::string brief(double value);
+
+/// Where a command writes: standard output, or the file PATH written through a temporary file
+/// in the same directory that is renamed over PATH by commit(). Until then PATH is untouched;
+/// if the command fails first, the destructor removes the temporary file.
+class Output {
+  public:
+    explicit Output(const std::string& path);
+    ~Output();
+    Output(const Output&) = delete;
+    Output& operator=(const Output&) = delete;
+
+    std::FILE* stream() const { return stream_; }
+    void write(const std::string& text);
+    /// Flushes and, for a file, closes and renames it into place. Throws std::runtime_error.
+    void commit();
+
+  private:
+    std::string path_;
+    std::string temporary_;
+    std::FILE* stream_ = nullptr;
+    bool committed_ = false;
+};
+
+int run_neighbors(const std::vector<std::string>& args);
+int run_info(const std::vector<std::string>& args);
+int run_coordination(const std::vector<std::string>& args);
+int run_bench(const std::vector<std::string>& args);
+
+} // namespace tricell::cli

@@ -1,0 +1,436 @@
+// The `tricell` command, run as a program: golden outputs of every command (tests/io/golden;
+// rewrite them with TRICELL_UPDATE_GOLDEN=1 after a deliberate change and review the diff),
+// malformed inputs and usage errors (message and exit status), and --output writing its file
+// completely or not at all. Commands run in tests/io/data with relative file names, so that
+// messages and outputs do not depend on where the repository lives.
+#include <sys/stat.h>
+#include <sys/wait.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "support/fixtures.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+    int status = -1;
+    std::string out;
+    std::string err;
+};
+
+std::string data_dir() {
+    return tricell::test::source_dir() + "/tests/io/data";
+}
+std::string golden_dir() {
+    return tricell::test::source_dir() + "/tests/io/golden";
+}
+
+class Cli : public ::testing::Test {
+  protected:
+    static void SetUpTestSuite() {
+        std::string pattern = (fs::temp_directory_path() / "tricell-cli-XXXXXX").string();
+        ASSERT_NE(::mkdtemp(pattern.data()), nullptr);
+        scratch_ = pattern;
+    }
+    static void TearDownTestSuite() { fs::remove_all(scratch_); }
+
+    // A fresh empty directory for one test's --output files.
+    static std::string output_dir(const std::string& name) {
+        const fs::path dir = fs::path(scratch_) / name;
+        fs::remove_all(dir);
+        fs::create_directories(dir);
+        return dir.string();
+    }
+
+    static std::vector<std::string> listing(const std::string& dir) {
+        std::vector<std::string> names;
+        for (const auto& entry : fs::directory_iterator(dir)) {
+            names.push_back(entry.path().filename().string());
+        }
+        std::sort(names.begin(), names.end());
+        return names;
+    }
+
+    // Runs `tricell ARGS` in tests/io/data.
+    static Result run(const std::string& args) {
+        const std::string out = scratch_ + "/stdout";
+        const std::string err = scratch_ + "/stderr";
+        const std::string command = "cd '" + data_dir() + "' && '" TRICELL_CLI "' " + args +
+                                    " > '" + out + "' 2> '" + err + "'";
+        const int status = std::system(command.c_str());
+        Result result;
+        result.status = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+        result.out = tricell::test::read_text(out);
+        result.err = tricell::test::read_text(err);
+        return result;
+    }
+
+    static std::string scratch_;
+};
+
+std::string Cli::scratch_;
+
+// Length of a number starting at s[k] (0 when none starts there). A number must not continue a
+// word ("Si3" is text), so that formulas and labels compare as text.
+std::size_t number_at(const std::string& s, std::size_t k) {
+    if (k > 0 && (std::isalnum(static_cast<unsigned char>(s[k - 1])) || s[k - 1] == '_' ||
+                  s[k - 1] == '.')) {
+        return 0;
+    }
+    const char c = s[k];
+    if (!(std::isdigit(static_cast<unsigned char>(c)) || c == '-' || c == '+' || c == '.')) {
+        return 0;
+    }
+    const char* begin = s.c_str() + k;
+    char* end = nullptr;
+    std::strtod(begin, &end);
+    return end > begin && std::isdigit(static_cast<unsigned char>(end[-1]))
+               ? std::size_t(end - begin)
+               : 0;
+}
+
+// Text equal except that numbers may differ by 1e-10 (absolute or relative): the last bits of a
+// vector may change with the engine's arithmetic, the meaning may not.
+bool same_output(const std::string& a, const std::string& b, std::string& where) {
+    std::size_t i = 0, j = 0;
+    while (i < a.size() && j < b.size()) {
+        const std::size_t la = number_at(a, i), lb = number_at(b, j);
+        if (la > 0 && lb > 0) {
+            const double x = std::strtod(a.c_str() + i, nullptr);
+            const double y = std::strtod(b.c_str() + j, nullptr);
+            if (std::abs(x - y) > 1e-10 * std::max(1.0, std::max(std::abs(x), std::abs(y)))) {
+                where = "numbers differ: " + a.substr(i, la) + " vs " + b.substr(j, lb);
+                return false;
+            }
+            i += la;
+            j += lb;
+        } else if (a[i] == b[j]) {
+            ++i;
+            ++j;
+        } else {
+            where = "text differs at: '" + a.substr(i, 40) + "' vs '" + b.substr(j, 40) + "'";
+            return false;
+        }
+    }
+    if (i != a.size() || j != b.size()) {
+        where = "lengths differ";
+        return false;
+    }
+    return true;
+}
+
+void expect_golden(const std::string& name, const std::string& actual) {
+    const std::string path = golden_dir() + "/" + name;
+    if (std::getenv("TRICELL_UPDATE_GOLDEN") != nullptr) {
+        std::ofstream(path, std::ios::binary) << actual;
+        return;
+    }
+    ASSERT_TRUE(fs::exists(path)) << path << " is missing (run with TRICELL_UPDATE_GOLDEN=1)";
+    const std::string expected = tricell::test::read_text(path);
+    std::string where;
+    EXPECT_TRUE(same_output(expected, actual, where))
+        << "golden " << name << ": " << where << "\n--- actual ---\n"
+        << actual;
+}
+
+void expect_success_golden(const Result& r, const std::string& golden) {
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.err, "");
+    expect_golden(golden, r.out);
+}
+
+// ---- golden outputs -----------------------------------------------------------------------
+
+TEST_F(Cli, NeighborsTsv) {
+    expect_success_golden(run("neighbors quartz.cif --cutoff 1.7 --sorted"),
+                          "neighbors_quartz.tsv");
+}
+
+TEST_F(Cli, NeighborsHalfCsv) {
+    expect_success_golden(run("neighbors quartz.cif --cutoff=1.7 --sorted --half --format csv"),
+                          "neighbors_quartz_half.csv");
+}
+
+TEST_F(Cli, NeighborsJsonFromPoscar) {
+    expect_success_golden(run("neighbors si.vasp --cutoff 2.5 --sorted --format json"),
+                          "neighbors_si.json");
+}
+
+TEST_F(Cli, NeighborsOfASlabAndOfAMolecule) {
+    expect_success_golden(run("neighbors graphene.extxyz --cutoff 1.5 --sorted"),
+                          "neighbors_graphene.tsv");
+    expect_success_golden(run("neighbors water.xyz --cutoff 1.6 --sorted"), "neighbors_water.tsv");
+}
+
+TEST_F(Cli, Info) {
+    expect_success_golden(run("info quartz.cif"), "info_quartz.txt");
+    expect_success_golden(run("info wustite.cif --symprec 1e-4"), "info_wustite.txt");
+    expect_success_golden(run("info water.xyz"), "info_water.txt");
+    expect_success_golden(run("info structure.txt --input-format cif"), "info_structure_txt.txt");
+}
+
+TEST_F(Cli, Coordination) {
+    expect_success_golden(run("coordination quartz.cif --cutoff 2"), "coordination_quartz.tsv");
+    expect_success_golden(run("coordination quartz.cif --bond Si-O=1.7 --bond O-O=2.7"),
+                          "coordination_quartz_bonds.tsv");
+}
+
+TEST_F(Cli, Help) {
+    expect_success_golden(run("--help"), "help.txt");
+    expect_success_golden(run("neighbors --help"), "help_neighbors.txt");
+    expect_success_golden(run("info -h"), "help_info.txt");
+    expect_success_golden(run("coordination --help"), "help_coordination.txt");
+    const Result version = run("--version");
+    EXPECT_EQ(version.status, 0);
+    EXPECT_EQ(version.out.rfind("tricell ", 0), 0u);
+}
+
+TEST_F(Cli, NeighborsTsvRealsReadBackExactlyAndMatchTheirVectors) {
+    const Result r = run("neighbors quartz.cif --cutoff 3.5");
+    ASSERT_EQ(r.status, 0);
+    std::istringstream lines(r.out);
+    std::string line;
+    std::getline(lines, line);
+    EXPECT_EQ(line, "# i j Sa Sb Sc d Dx Dy Dz");
+    std::size_t pairs = 0;
+    while (std::getline(lines, line)) {
+        std::istringstream fields(line);
+        std::vector<std::string> f;
+        for (std::string w; std::getline(fields, w, '\t');) {
+            f.push_back(w);
+        }
+        ASSERT_EQ(f.size(), 9u) << line;
+        double real[4];
+        for (int k = 0; k < 4; ++k) {
+            real[k] = std::strtod(f[5 + std::size_t(k)].c_str(), nullptr);
+            char again[32];
+            std::snprintf(again, sizeof again, "%.17g", real[k]);
+            EXPECT_EQ(f[5 + std::size_t(k)], again);
+        }
+        EXPECT_NEAR(std::sqrt(real[1] * real[1] + real[2] * real[2] + real[3] * real[3]), real[0],
+                    1e-12);
+        EXPECT_LT(real[0], 3.5);
+        ++pairs;
+    }
+    EXPECT_GT(pairs, 50u);
+}
+
+// ---- malformed inputs ---------------------------------------------------------------------
+
+struct BadInput {
+    const char* file;
+    const char* message;
+};
+
+const BadInput bad_inputs[] = {
+    {"empty.cif", "tricell: empty.cif: file is empty, expected a CIF data block (data_NAME)\n"},
+    {"truncated.cif",
+     "tricell: truncated.cif:43: incomplete loop row: the loop of _atom_site_label has 7 tags but "
+     "its last row has 4 values (truncated file or missing value?)\n"},
+    {"missing_cell.cif",
+     "tricell: missing_cell.cif:14: _cell_angle_beta is missing in data_alpha_quartz, expected "
+     "the cell (_cell_length_a/b/c, _cell_angle_alpha/beta/gamma)\n"},
+    {"non_numeric.cif", "tricell: non_numeric.cif:42: _atom_site_fract_y of site 'Si1' must be a "
+                        "number, got 'zero'\n"},
+    {"structure.txt", "tricell: structure.txt: unknown file extension '.txt', expected *.cif, "
+                      "*.xyz, *.extxyz, *.vasp, *.poscar, POSCAR or CONTCAR (or give the format "
+                      "explicitly)\n"},
+    {"no_such_file.cif", "tricell: no_such_file.cif: cannot open file (No such file or "
+                         "directory)\n"},
+};
+
+TEST_F(Cli, MalformedInputsFailWithOneLineAndStatus1) {
+    for (const BadInput& bad : bad_inputs) {
+        for (const std::string command :
+             {"neighbors FILE --cutoff 3", "info FILE", "coordination FILE --cutoff 2"}) {
+            std::string args = command;
+            args.replace(args.find("FILE"), 4, bad.file);
+            SCOPED_TRACE(args);
+            const Result r = run(args);
+            EXPECT_EQ(r.status, 1);
+            EXPECT_EQ(r.out, "");
+            EXPECT_EQ(r.err, bad.message);
+        }
+    }
+}
+
+TEST_F(Cli, EmptyPoscarAndXyz) {
+    const std::string dir = output_dir("empty");
+    std::ofstream(dir + "/POSCAR").flush();
+    std::ofstream(dir + "/empty.xyz") << "\n";
+    Result r = run("info " + dir + "/POSCAR");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_EQ(r.err, "tricell: " + dir +
+                         "/POSCAR: file is empty, expected a POSCAR (comment, "
+                         "scale factor, lattice vectors, element names, counts, positions)\n");
+    r = run("info " + dir + "/empty.xyz");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_EQ(r.err, "tricell: " + dir +
+                         "/empty.xyz: file is empty, expected an XYZ file (number "
+                         "of atoms, comment line, one line per atom)\n");
+}
+
+// ---- usage and value errors ---------------------------------------------------------------
+
+struct BadCommand {
+    const char* args;
+    int status;
+    const char* message;
+};
+
+const BadCommand bad_commands[] = {
+    {"frobnicate x.cif", 2,
+     "tricell: unknown command 'frobnicate', expected neighbors, info, coordination or bench (see "
+     "tricell --help)\n"},
+    {"neighbors --cutoff 3", 2,
+     "tricell: neighbors: missing FILE (see tricell neighbors --help)\n"},
+    {"neighbors quartz.cif", 2,
+     "tricell: neighbors: missing --cutoff R (see tricell neighbors --help)\n"},
+    {"neighbors quartz.cif --cutoff", 2,
+     "tricell: neighbors: --cutoff needs a value (see tricell neighbors --help)\n"},
+    {"neighbors quartz.cif --cutoff abc", 2,
+     "tricell: neighbors: --cutoff expects a number, got 'abc' (see tricell neighbors --help)\n"},
+    {"neighbors quartz.cif --cutoff 3 --frob", 2,
+     "tricell: neighbors: unknown option '--frob' (see tricell neighbors --help)\n"},
+    {"neighbors quartz.cif other.cif --cutoff 3", 2,
+     "tricell: neighbors: unexpected argument 'other.cif' (see tricell neighbors --help)\n"},
+    {"neighbors quartz.cif --cutoff 3 --format xml", 2,
+     "tricell: neighbors: --format must be tsv, csv or json, got 'xml' (see tricell neighbors "
+     "--help)\n"},
+    {"neighbors quartz.cif --cutoff 3 --half=yes", 2,
+     "tricell: neighbors: --half takes no value (see tricell neighbors --help)\n"},
+    {"neighbors quartz.cif --cutoff 3 --input-format pdb", 2,
+     "tricell: neighbors: --input-format: unknown format 'pdb', expected cif, xyz, extxyz, poscar "
+     "or vasp (see tricell neighbors --help)\n"},
+    {"info", 2, "tricell: info: missing FILE (see tricell info --help)\n"},
+    {"info quartz.cif --symprec x", 2,
+     "tricell: info: --symprec expects a number, got 'x' (see tricell info --help)\n"},
+    {"coordination quartz.cif", 2,
+     "tricell: coordination: missing --cutoff R or --bond A-B=R (see tricell coordination "
+     "--help)\n"},
+    {"coordination quartz.cif --bond SiO=2", 2,
+     "tricell: coordination: --bond expects A-B=R such as Si-O=1.8, got 'SiO=2' (see tricell "
+     "coordination --help)\n"},
+    {"coordination quartz.cif --bond Si-O=two", 2,
+     "tricell: coordination: --bond expects A-B=R with a number R, got 'Si-O=two' (see tricell "
+     "coordination --help)\n"},
+    {"neighbors quartz.cif --cutoff -1", 1, "tricell: cutoff must be > 0 (got -1)\n"},
+    {"neighbors quartz.cif --cutoff 0", 1, "tricell: cutoff must be > 0 (got 0)\n"},
+    {"info quartz.cif --symprec -1", 1, "tricell: symprec must be > 0 (got -1)\n"},
+    {"coordination quartz.cif --cutoff 0", 1, "tricell: cutoff must be > 0 (got 0)\n"},
+    {"coordination quartz.cif --bond Si-Qq=2", 1, "tricell: bond Si-Qq: unknown element 'Qq'\n"},
+    {"neighbors quartz.cif --cutoff 3 --input-format xyz", 1,
+     "tricell: quartz.cif:1: expected the number of atoms (an integer >= 0), got '#'\n"},
+};
+
+TEST_F(Cli, UsageErrorsExit2AndValueErrorsExit1) {
+    for (const BadCommand& bad : bad_commands) {
+        SCOPED_TRACE(bad.args);
+        const Result r = run(bad.args);
+        EXPECT_EQ(r.status, bad.status);
+        EXPECT_EQ(r.out, "");
+        EXPECT_EQ(r.err, bad.message);
+    }
+}
+
+TEST_F(Cli, NoArgumentsPrintsUsageAndExits2) {
+    const Result r = run("");
+    EXPECT_EQ(r.status, 2);
+    EXPECT_EQ(r.out, "");
+    EXPECT_EQ(r.err.rfind("usage: tricell COMMAND FILE [OPTIONS]\n", 0), 0u);
+}
+
+TEST_F(Cli, AFailedWriteToStandardOutputIsAnError) {
+    const std::string err = scratch_ + "/stderr";
+    const std::string command =
+        "cd '" + data_dir() +
+        "' && '" TRICELL_CLI "' neighbors quartz.cif --cutoff 3 > /dev/full 2> '" + err + "'";
+    const int status = std::system(command.c_str());
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 1);
+    EXPECT_EQ(tricell::test::read_text(err),
+              "tricell: cannot write to standard output (No space left on device)\n");
+}
+
+// ---- --output -----------------------------------------------------------------------------
+
+TEST_F(Cli, OutputWritesTheFileAndNothingElse) {
+    const std::string dir = output_dir("ok");
+    const Result r =
+        run("neighbors quartz.cif --cutoff 1.7 --sorted --output " + dir + "/pairs.tsv");
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.out, "");
+    EXPECT_EQ(listing(dir), (std::vector<std::string>{"pairs.tsv"}));
+    EXPECT_EQ(tricell::test::read_text(dir + "/pairs.tsv"),
+              run("neighbors quartz.cif --cutoff 1.7 --sorted").out);
+    // The usual permissions of a new file (mkstemp alone would leave 0600).
+    const mode_t mask = ::umask(0);
+    ::umask(mask);
+    struct stat info {};
+    ASSERT_EQ(::stat((dir + "/pairs.tsv").c_str(), &info), 0);
+    EXPECT_EQ(info.st_mode & 0777, 0666 & ~mask);
+}
+
+TEST_F(Cli, OutputIsReplacedWhole) {
+    const std::string dir = output_dir("replace");
+    std::ofstream(dir + "/pairs.json") << "old contents that are longer than the new ones\n";
+    const Result r = run("neighbors si.vasp --cutoff 2.5 --sorted --format json --output " + dir +
+                         "/pairs.json");
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(tricell::test::read_text(dir + "/pairs.json"),
+              run("neighbors si.vasp --cutoff 2.5 --sorted --format json").out);
+    EXPECT_EQ(listing(dir), (std::vector<std::string>{"pairs.json"}));
+}
+
+TEST_F(Cli, OutputLeavesNothingBehindOnError) {
+    const std::string dir = output_dir("error");
+    for (const std::string args :
+         {"neighbors truncated.cif --cutoff 3", "neighbors empty.cif --cutoff 3",
+          "neighbors quartz.cif --cutoff -1", "neighbors quartz.cif --cutoff 3 --format xml"}) {
+        SCOPED_TRACE(args);
+        const Result r = run(args + " --output " + dir + "/pairs.tsv");
+        EXPECT_NE(r.status, 0);
+        EXPECT_EQ(r.out, "");
+        EXPECT_TRUE(listing(dir).empty());
+    }
+}
+
+TEST_F(Cli, OutputKeepsAnExistingFileOnError) {
+    const std::string dir = output_dir("keep");
+    std::ofstream(dir + "/pairs.tsv") << "previous result\n";
+    const Result r = run("neighbors non_numeric.cif --cutoff 3 --output " + dir + "/pairs.tsv");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_EQ(tricell::test::read_text(dir + "/pairs.tsv"), "previous result\n");
+    EXPECT_EQ(listing(dir), (std::vector<std::string>{"pairs.tsv"}));
+}
+
+TEST_F(Cli, OutputIntoAMissingDirectoryFails) {
+    const std::string dir = output_dir("missing");
+    const Result r = run("neighbors quartz.cif --cutoff 3 --output " + dir + "/no/such/pairs.tsv");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_EQ(r.err, "tricell: cannot create a temporary file for " + dir +
+                         "/no/such/pairs.tsv (No such file or directory)\n");
+    EXPECT_TRUE(listing(dir).empty());
+}
+
+TEST_F(Cli, OutputOntoADirectoryFailsAndCleansUp) {
+    const std::string dir = output_dir("onto");
+    fs::create_directories(dir + "/target");
+    const Result r = run("neighbors quartz.cif --cutoff 3 --output " + dir + "/target");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_EQ(r.err.rfind("tricell: cannot write " + dir + "/target (", 0), 0u) << r.err;
+    EXPECT_EQ(listing(dir), (std::vector<std::string>{"target"}));
+}
+
+} // namespace

@@ -1,0 +1,87 @@
+// Coordination numbers with one cutoff and with per-element-pair cutoffs.
+#include <cmath>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include <tricell/error.hpp>
+#include <tricell/io/coordination.hpp>
+
+#include "../support/expect_throw_msg.hpp"
+#include "support/fixtures.hpp"
+
+namespace {
+
+using tricell::io::BondCutoff;
+using tricell::io::CoordinationOptions;
+
+tricell::io::Structure quartz() {
+    return tricell::io::read_structure(tricell::test::fixtures_dir() +
+                                       "/structures/alpha_quartz.cif");
+}
+
+TEST(Coordination, QuartzWithOneCutoff) {
+    const tricell::io::Structure s = quartz();
+    CoordinationOptions options;
+    options.cutoff = 2.0;
+    const auto c = tricell::io::coordination(s, options);
+    ASSERT_EQ(c.size(), 9u);
+    for (std::size_t k = 0; k < c.size(); ++k) {
+        EXPECT_EQ(c[k].count, s.species[k] == "Si" ? 4u : 2u) << k;
+        EXPECT_NEAR(c[k].nearest, 1.6046315549099557, 1e-9);
+    }
+}
+
+TEST(Coordination, PairCutoffsOverrideTheDefault) {
+    const tricell::io::Structure s = quartz();
+    CoordinationOptions options;
+    options.bonds = {BondCutoff{"o", "SI", 1.7}};
+    auto c = tricell::io::coordination(s, options);
+    EXPECT_EQ(c[0].count, 4u); // Si: four O, no Si-Si bond without a cutoff for it
+    EXPECT_EQ(c[3].count, 2u);
+    // O-O at 2.6 A: six O neighbours per O once O-O counts.
+    options.bonds.push_back(BondCutoff{"O", "O", 2.7});
+    c = tricell::io::coordination(s, options);
+    EXPECT_EQ(c[0].count, 4u);
+    EXPECT_EQ(c[3].count, 8u);
+    // A default cutoff of 3.2 adds Si-Si (3.06 A), while Si-O and O-O keep their own cutoffs.
+    options.cutoff = 3.2;
+    c = tricell::io::coordination(s, options);
+    EXPECT_EQ(c[0].count, 8u);
+    EXPECT_EQ(c[3].count, 8u);
+}
+
+TEST(Coordination, AtomWithoutNeighboursHasNanNearest) {
+    tricell::io::Structure s;
+    s.box = tricell::Box::from_parameters(10, 10, 10, 90, 90, 90);
+    s.species = {"Ar"};
+    s.positions = {Eigen::Vector3d(1, 1, 1)};
+    s.occupancies = {1};
+    s.labels = {"Ar"};
+    CoordinationOptions options;
+    options.cutoff = 3;
+    const auto c = tricell::io::coordination(s, options);
+    EXPECT_EQ(c[0].count, 0u);
+    EXPECT_TRUE(std::isnan(c[0].nearest));
+}
+
+TEST(Coordination, Errors) {
+    const tricell::io::Structure s = quartz();
+    CoordinationOptions options;
+    EXPECT_THROW_MSG(tricell::io::coordination(s, options), tricell::InvalidArgument,
+                     "no cutoff: give a cutoff for all pairs or per-element-pair bond cutoffs");
+    options.cutoff = -1;
+    EXPECT_THROW_MSG(options.validate(), tricell::InvalidArgument,
+                     "cutoff must be finite and >= 0 (got -1)");
+    options.cutoff = 0;
+    options.bonds = {BondCutoff{"Si", "Qq", 2}};
+    EXPECT_THROW_MSG(options.validate(), tricell::InvalidArgument,
+                     "bond Si-Qq: unknown element 'Qq'");
+    options.bonds = {BondCutoff{"Si", "O", 0}};
+    EXPECT_THROW_MSG(options.validate(), tricell::InvalidArgument,
+                     "bond Si-O: cutoff must be > 0 (got 0)");
+    options.bonds = {BondCutoff{"Si", "O", 2}, BondCutoff{"o", "si", 1.8}};
+    EXPECT_THROW_MSG(options.validate(), tricell::InvalidArgument, "bond O-Si is given twice");
+}
+
+} // namespace
