@@ -54,4 +54,26 @@ ReducedBasis reduce_basis(const Eigen::Matrix3d& basis, int count) {
     return out;
 }
 
+ReducedCell reduce_cell(const Eigen::Matrix3d& h, const std::array<bool, 3>& periodic) {
+    Eigen::Matrix3d periodic_vectors = Eigen::Matrix3d::Zero();
+    int axis_of[3] = {0, 0, 0};
+    int count = 0;
+    for (int axis = 0; axis < 3; ++axis) {
+        if (periodic[std::size_t(axis)]) {
+            axis_of[count] = axis;
+            periodic_vectors.col(count++) = h.col(axis);
+        }
+    }
+    const ReducedBasis reduced = reduce_basis(periodic_vectors, count);
+    ReducedCell out;
+    out.h = h;
+    for (int l = 0; l < count; ++l) {
+        out.h.col(axis_of[l]) = reduced.vectors.col(l);
+        for (int k = 0; k < count; ++k) {
+            out.transform(axis_of[k], axis_of[l]) = reduced.transform(k, l);
+        }
+    }
+    return out;
+}
+
 } // namespace tricell::detail

@@ -7,6 +7,7 @@
 #include <numeric>
 #include <thread>
 
+#include "detail/lattice_reduction.hpp"
 #include "tricell/error.hpp"
 
 namespace tricell {
@@ -74,7 +75,39 @@ void NeighborList::clear() {
     offsets_.clear();
 }
 
-void NeighborSearch::build(const Box& box, PointsView positions, const NeighborOptions& options) {
+namespace {
+
+// The box the search runs in: the caller's box, or, when its periodic vectors are strongly
+// skewed, the reduced cell spanning the same lattice (wider perpendicular widths, so fewer and
+// rounder cells). Shifts found in the reduced frame map back with S = transform * S'.
+Box search_frame(const Box& box, bool allow_reduction, Eigen::Matrix3i& transform) {
+    transform.setIdentity();
+    if (!allow_reduction || !box.periodicity().any()) {
+        return box;
+    }
+    const detail::ReducedCell reduced = detail::reduce_cell(box.matrix(), box.periodicity().axes);
+    if (reduced.transform == Eigen::Matrix3i::Identity()) {
+        return box;
+    }
+    const Box candidate = Box::from_columns(reduced.h, box.periodicity());
+    double before = std::numeric_limits<double>::infinity(), after = before;
+    for (int k = 0; k < 3; ++k) {
+        if (box.periodic(k)) {
+            before = std::min(before, box.perpendicular_widths()[k]);
+            after = std::min(after, candidate.perpendicular_widths()[k]);
+        }
+    }
+    if (after < 1.05 * before) {
+        return box; // not worth a change of frame
+    }
+    transform = reduced.transform;
+    return candidate;
+}
+
+} // namespace
+
+void NeighborSearch::build(const Box& caller_box, PointsView positions,
+                           const NeighborOptions& options) {
     options.validate();
     const std::size_t n = positions.size();
     if (n >= std::size_t(std::numeric_limits<std::int32_t>::max())) {
@@ -92,6 +125,8 @@ void NeighborSearch::build(const Box& box, PointsView positions, const NeighborO
         }
     }
     options_ = options;
+    const Box box = search_frame(caller_box, options.reduce_cell, to_caller_);
+    reduced_frame_ = to_caller_ != Eigen::Matrix3i::Identity();
     h_ = box.matrix();
     cutoff_sq_ = options.cutoff * options.cutoff;
     atom_count_ = n;
@@ -433,6 +468,9 @@ void NeighborSearch::compute(NeighborList& out) const {
             }
             append_in_order(out, partial, sizes, keep_shifts, q.distances, q.vectors);
         }
+        if (reduced_frame_ && keep_shifts) {
+            to_caller_frame(out.shifts_);
+        }
         if (options_.sorted) {
             sort_pairs(out.i_, out.j_, out.shifts_, out.distances_, out.vectors_, out.offsets_,
                        atom_count_);
@@ -478,6 +516,16 @@ void NeighborSearch::append_in_order(NeighborList& out, std::vector<NeighborList
         std::copy(from.vectors_.begin(), from.vectors_.end(),
                   out.vectors_.begin() + std::ptrdiff_t(3 * at));
     });
+}
+
+void NeighborSearch::to_caller_frame(PairArray<std::int32_t>& shifts) const {
+    const Eigen::Matrix3i& t = to_caller_;
+    for (std::size_t k = 0; k < shifts.size(); k += 3) {
+        const Eigen::Vector3i s = t * Eigen::Vector3i(shifts[k], shifts[k + 1], shifts[k + 2]);
+        shifts[k] = s[0];
+        shifts[k + 1] = s[1];
+        shifts[k + 2] = s[2];
+    }
 }
 
 NeighborList compute_neighbors(const Box& box, PointsView positions,

@@ -61,6 +61,9 @@ struct TRICELL_API NeighborOptions {
     std::size_t max_pairs = 500'000'000;
     /// Cap on grid cells; 0 means 4 N + 64. Memory follows atoms, not volume.
     std::size_t max_cells = 0;
+    /// Search a strongly skewed periodic cell in its reduced twin (same lattice, rounder cell),
+    /// so a sheared box costs what the reduced one costs. Never changes the result.
+    bool reduce_cell = true;
     /// Threads for NeighborSearch::compute(); 0 means all hardware threads. The stored list is
     /// identical, pair for pair and in the same order, whatever the number of threads.
     /// (for_each_pair() always runs on the calling thread.)
@@ -173,6 +176,8 @@ class TRICELL_API NeighborSearch {
     template <class Piece> void for_each_row_piece(std::size_t c1, Piece&& piece) const;
     // Estimated work per cell (candidate pairs), for splitting cells between threads.
     std::vector<double> cell_costs() const;
+    // Maps shifts found in the reduced frame to the caller's lattice vectors.
+    void to_caller_frame(PairArray<std::int32_t>& shifts) const;
     // Appends the chunks' lists to `out` (which holds chunk 0) in chunk order.
     static void append_in_order(NeighborList& out, std::vector<NeighborList>& partial,
                                 const std::vector<std::size_t>& sizes, bool shifts, bool distances,
@@ -182,7 +187,11 @@ class TRICELL_API NeighborSearch {
                             std::size_t cell_end) const;
 
     NeighborOptions options_;
-    Eigen::Matrix3d h_ = Eigen::Matrix3d::Identity();
+    Eigen::Matrix3d h_ = Eigen::Matrix3d::Identity(); // of the search frame
+    // Shifts in the search frame map to the caller's as S = to_caller_ * S' (identity unless
+    // the cell was reduced).
+    Eigen::Matrix3i to_caller_ = Eigen::Matrix3i::Identity();
+    bool reduced_frame_ = false;
     double cutoff_sq_ = 0;
     std::size_t atom_count_ = 0;
     double estimated_pairs_ = 0;

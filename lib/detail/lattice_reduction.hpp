@@ -7,6 +7,8 @@
 // how well this reduces: callers bound their searches from the reduced basis itself.
 #pragma once
 
+#include <array>
+
 #include <Eigen/Core>
 
 namespace tricell::detail {
@@ -22,5 +24,14 @@ struct ReducedBasis {
 
 /// Reduces the first `count` columns of `basis` (count in 0..3).
 ReducedBasis reduce_basis(const Eigen::Matrix3d& basis, int count);
+
+/// A box matrix with its periodic columns reduced: h = original * transform, where transform
+/// is unimodular, mixes periodic columns only and leaves open columns as they are.
+struct ReducedCell {
+    Eigen::Matrix3d h;
+    Eigen::Matrix3i transform = Eigen::Matrix3i::Identity();
+};
+
+ReducedCell reduce_cell(const Eigen::Matrix3d& h, const std::array<bool, 3>& periodic);
 
 } // namespace tricell::detail

@@ -271,3 +271,49 @@ TEST(NeighborProperty, OutputIdenticalForAnyThreadCount_RandomCases) {
         }
     }
 }
+
+TEST(NeighborProperty, CellReductionDoesNotChangeTheList_RandomCases) {
+    for (std::uint64_t seed = 1; seed < case_count; seed += 6) { // the strongly skewed kind
+        const RandomSystem sys = tricell::testing::random_system(seed);
+        SCOPED_TRACE(testing::Message() << "seed " << seed << " (" << sys.kind << ")");
+        NeighborOptions o = options_for(seed, sys.cutoff);
+        o.half = seed % 4 == 1;
+        o.reduce_cell = false;
+        const PairMap plain = tricell::testing::to_map(run(sys, o, o.half, CellListKind::sorted));
+        o.reduce_cell = true;
+        const PairMap with_reduction =
+            tricell::testing::to_map(run(sys, o, o.half, CellListKind::sorted));
+        expect_same_pairs(plain, with_reduction, sys.cutoff, tolerance(sys) * 100,
+                          "reduced vs plain frame");
+        if (HasFailure()) {
+            return;
+        }
+    }
+}
+
+TEST(NeighborProperty, ShearedBoxUsesItsReducedTwin) {
+    // A box sheared by whole lattice vectors is the same lattice as the cube: the search must
+    // find the same pairs, with shifts expressed in the sheared vectors.
+    const Box cube = Box::from_lammps(10, 10, 10, 0, 0, 0);
+    const Box sheared = Box::from_lammps(10, 10, 10, 30, -20, 40); // b += 3a, c += -2a + 4b
+    std::mt19937_64 rng(8);
+    std::uniform_real_distribution<double> u(0, 10);
+    std::vector<Eigen::Vector3d> x(200);
+    for (auto& r : x) {
+        r = Eigen::Vector3d(u(rng), u(rng), u(rng));
+    }
+    NeighborOptions o;
+    o.cutoff = 3.0;
+    o.quantities.vectors = true;
+    const PairMap in_cube = tricell::testing::to_map(tricell::compute_neighbors(cube, x, o));
+    const NeighborList in_sheared = tricell::compute_neighbors(sheared, x, o);
+    ASSERT_EQ(in_sheared.size(), in_cube.size());
+    for (std::size_t k = 0; k < in_sheared.size(); ++k) {
+        const Eigen::Vector3d d = x[in_sheared.j()[k]] - x[in_sheared.i()[k]] +
+                                  sheared.matrix() * in_sheared.shift(k).cast<double>();
+        ASSERT_NEAR(d.norm(), in_sheared.distances()[k], 1e-9);
+    }
+    tricell::NeighborSearch search;
+    search.build(sheared, x, o);
+    EXPECT_EQ(search.grid().dims(), (std::array<int, 3>{{3, 3, 3}})); // the cube's grid
+}

@@ -215,8 +215,14 @@ void NeighborSearch::traverse(Emit&& emit, std::size_t cell_begin, std::size_t c
     // Whether to flip is a coin toss per pair, so it selects values instead of branching.
     auto canonical = [&](std::uint32_t i, std::uint32_t j, int sa, int sb, int sc, double dx,
                          double dy, double dz, double d_sq) {
-        const bool flip =
-            i > j || (i == j && (sa < 0 || (sa == 0 && (sb < 0 || (sb == 0 && sc < 0)))));
+        bool flip = i > j;
+        if (i == j) { // an atom and its own image: orient by S in the caller's frame
+            Eigen::Vector3i s(sa, sb, sc);
+            if (reduced_frame_) {
+                s = to_caller_ * s;
+            }
+            flip = s[0] < 0 || (s[0] == 0 && (s[1] < 0 || (s[1] == 0 && s[2] < 0)));
+        }
         const int sign = flip ? -1 : 1;
         const double real_sign = flip ? -1.0 : 1.0;
         emit(flip ? j : i, flip ? i : j, sign * sa, sign * sb, sign * sc, real_sign * dx,
@@ -233,7 +239,10 @@ template <class Visit> void NeighborSearch::for_each_pair(Visit&& visit) const {
     traverse(
         [&](std::uint32_t i, std::uint32_t j, int sa, int sb, int sc, double dx, double dy,
             double dz, double d_sq) {
-            const Pair pair{i, j, Shift(sa, sb, sc), Eigen::Vector3d(dx, dy, dz), d_sq};
+            Pair pair{i, j, Shift(sa, sb, sc), Eigen::Vector3d(dx, dy, dz), d_sq};
+            if (reduced_frame_) {
+                pair.shift = to_caller_ * pair.shift;
+            }
             visit(pair);
         },
         0, grid_.cell_count());
