@@ -8,3 +8,4 @@
 #include "tricell/neighbor_list.hpp"
 #include "tricell/stencil.hpp"
 #include "tricell/types.hpp"
+#include "tricell/verlet.hpp"

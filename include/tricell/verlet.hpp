@@ -1,0 +1,264 @@
+// Verlet lists: a neighbour list with a skin, rebuilt only when the motion since the last build
+// could have brought a new pair inside the cutoff, plus the cost model that picks the skin.
+//
+// A build runs the neighbour search (NeighborSearch) once at the list radius r_l = r_c + skin
+// and keeps the candidate pairs (i, j, S). Each later update() does not search: it measures how
+// far every atom has moved since the build, and if that motion is within budget it filters the
+// candidates down to the pairs with |D| < r_c for the current positions and box, with fresh S,
+// d and D, in buffers that survive between calls. Otherwise it rebuilds first (and says so).
+//
+// Why the rule is safe. Let s0 be the fractional build positions in the build box H0, and s the
+// current ones in the current box H. For each atom the tracker picks an integer jump m_i and
+// measures its displacement in the build frame, delta_i = H0 (s_i + m_i - s0_i). A current pair
+// (i, j, S') maps to the candidate (i, j, S' - m_j + m_i), whose build-time vector is
+//     D0 = H0 H^-1 D - delta_j + delta_i,   so   |D0| <= ||H0 H^-1|| |D| + |delta_i| + |delta_j|,
+// with ||.|| the spectral norm. If every |delta| <= (skin - eps r_c) / 2, where
+// eps = max(0, ||H0 H^-1|| - 1) <= ||(H0 - H) H^-1|| (the box's strain since the build), then
+// |D| < r_c implies |D0| < r_c + skin: the pair was a candidate. That is the rebuild rule:
+// needs_rebuild() is true when some atom has moved more than (skin - eps r_c) / 2 since the build
+// (skin / 2 while the box is unchanged), or the atom count or periodicity changed. The bound holds
+// for ANY choice of the integers m_i, so wrapping never matters for correctness; the tracker takes
+// the m_i that make delta_i the minimum image in the build box (fractional rounding, then
+// Box::minimum_image when rounding is not short enough), so a caller who wraps positions into the
+// box between calls, or moves an atom by a whole lattice vector, does not trigger a rebuild, and a
+// real move is never hidden: delta_i is the shortest way the atom could have got there. The
+// refreshed image shift is S' = S + m_j - m_i, so S stays relative to the caller's positions as
+// given.
+//
+// Why displacements are taken in fractional coordinates. When the box deforms (NPT, shear) and
+// the caller moves the atoms with it (s fixed, the usual affine remap), delta is zero: the
+// whole box change enters through eps alone, a bound on how much any pair vector, through any
+// image, can shrink (|D0| <= (1 + eps) |D|, whatever the pair's shift or how far the atoms are
+// from the origin). Cartesian displacements would instead grow with the distance from the
+// origin (|dH s| <= ||dH|| |s|) and trigger rebuilds for a mere change of box. A caller who
+// changes the box but keeps Cartesian positions still gets exact lists; the non-affine part
+// then counts as displacement.
+//
+// Cost model. A build costs C_b (the search at r_l), every step costs C_f (the displacement check
+// plus filtering the candidates, whose number grows as r_l^3), and the list survives about
+// 1 + skin / (2 v) steps, v the largest displacement per step. The cost per step,
+//     C(skin) = C_b(r_l, h) / (1 + skin / (2 v)) + C_f(r_l),
+// is minimised numerically over the skin and the cell size h (see SkinCostModel). With only the
+// r_l^3 terms (C_b = B r_l^3, C_f = F r_l^3) the optimum is y = skin* + 2 v, the positive root of
+//     3 F y^2 + 4 v B y - 2 v B (r_c - 2 v) = 0,   i.e.   skin* ~ sqrt(2 v B r_c / (3 F))
+// for small v: the skin grows as the square root of the speed and of the build-to-filter ratio.
+// benchmarks/verlet_bench.cpp measures the costs, fits the model and checks its choice.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "tricell/box.hpp"
+#include "tricell/export.hpp"
+#include "tricell/neighbor_list.hpp"
+#include "tricell/types.hpp"
+
+namespace tricell {
+
+struct TRICELL_API VerletOptions {
+    /// r_c: update() reports the pairs with |D| < cutoff (strict). Finite and > 0.
+    double cutoff = 0;
+    /// Delta: candidates are built at cutoff + skin. Finite and >= 0 (0 rebuilds whenever
+    /// anything moves).
+    double skin = 0;
+    /// Report each pair once, in the canonical orientation of NeighborOptions::half (i < j, or
+    /// i == j with S lexicographically positive).
+    bool half = false;
+    /// What update() stores per pair besides i and j.
+    Quantities quantities;
+    /// Cells per LIST radius r_l = cutoff + skin (h = r_l / k, k >= 1). 1 gives h = r_l;
+    /// r_l / r_c gives h = r_c. Never changes the result, only the speed (see SkinCostModel).
+    double cells_per_cutoff = 2;
+    CellListKind cell_list = CellListKind::sorted;
+    /// Limit on the number of CANDIDATES of a build (see NeighborOptions::max_pairs); 0: none.
+    std::size_t max_pairs = 500'000'000;
+    /// Cap on grid cells of a build; 0 means 4 N + 64.
+    std::size_t max_cells = 0;
+    /// Threads for the search of a build (0: all hardware threads). The filter is serial.
+    int threads = 1;
+
+    /// Throws InvalidArgument naming the offending field and value.
+    void validate() const;
+};
+
+/// A Verlet list: candidates at cutoff + skin, refreshed to the pairs within the cutoff.
+///
+///     tricell::VerletList list(options);
+///     for (step...) { move(x); bool rebuilt = list.update(box, x); use(list); }
+///
+/// After update() the stored pairs are grouped by i in increasing order (offsets() gives each
+/// atom's range); the order of an atom's pairs is unspecified.
+class TRICELL_API VerletList {
+  public:
+    VerletList() = default;
+    /// Validates the options.
+    explicit VerletList(const VerletOptions& options);
+
+    const VerletOptions& options() const { return options_; }
+    /// r_l = cutoff + skin, the radius the candidates are built at.
+    double list_radius() const { return options_.cutoff + options_.skin; }
+
+    /// Refreshes the pairs within the cutoff for these positions and box, rebuilding the
+    /// candidates first when needs_rebuild(). Returns true if it rebuilt. Positions may lie
+    /// anywhere and may be wrapped (or shifted by any lattice vector) between calls. On error
+    /// the stored pairs are left empty and the next update() rebuilds.
+    bool update(const Box& box, PointsView positions);
+    /// Rebuilds the candidates unconditionally, then refreshes as update() does.
+    void rebuild(const Box& box, PointsView positions);
+
+    /// True when the candidates may miss a pair: nothing built yet, a different atom count or
+    /// periodicity, or some atom displaced (minimum image, build frame) by more than
+    /// displacement_budget(box). Throws InvalidArgument for a non-finite position.
+    bool needs_rebuild(const Box& box, PointsView positions) const;
+    /// (skin - eps r_c) / 2 with eps = max(0, ||H0 H^-1|| - 1): how far each atom may have moved
+    /// since the build for the candidates to stay complete in this box. Negative (a rebuild is
+    /// needed whatever the positions) when nothing is built or the periodicity changed.
+    double displacement_budget(const Box& box) const;
+    /// Largest displacement of an atom since the build (minimum image in the build box of the
+    /// fractional displacement). Infinity when nothing is built or the atom count or
+    /// periodicity differs.
+    double max_displacement(const Box& box, PointsView positions) const;
+    /// Forgets the candidates (the next update() rebuilds) and the stored pairs. Keeps buffers.
+    void reset();
+
+    // The pairs of the last update(), struct-of-arrays, as in NeighborList.
+    std::size_t size() const { return i_.size(); }
+    bool empty() const { return i_.empty(); }
+    const PairArray<std::uint32_t>& i() const { return i_; }
+    const PairArray<std::uint32_t>& j() const { return j_; }
+    /// 3 ints per pair (Sa, Sb, Sc), empty unless Quantities::shifts.
+    const PairArray<std::int32_t>& shifts() const { return shifts_; }
+    /// Empty unless Quantities::distances.
+    const PairArray<double>& distances() const { return distances_; }
+    /// 3 doubles per pair (Dx, Dy, Dz), empty unless Quantities::vectors.
+    const PairArray<double>& vectors() const { return vectors_; }
+    /// Pairs of atom i are [offsets[i], offsets[i + 1]).
+    const std::vector<std::size_t>& offsets() const { return offsets_; }
+    Shift shift(std::size_t k) const {
+        return Shift(shifts_[3 * k], shifts_[3 * k + 1], shifts_[3 * k + 2]);
+    }
+    Eigen::Vector3d vector(std::size_t k) const {
+        return Eigen::Vector3d(vectors_[3 * k], vectors_[3 * k + 1], vectors_[3 * k + 2]);
+    }
+
+    /// Builds so far (each update() that rebuilt, and each rebuild()).
+    std::size_t rebuild_count() const { return rebuild_count_; }
+    /// Candidate pairs of the current build (at the list radius).
+    std::size_t candidate_count() const { return candidate_j_.size(); }
+    /// Refreshes since the last build (0 right after a build).
+    std::size_t updates_since_build() const { return updates_since_build_; }
+
+  private:
+    // Tracks every atom against the build: checks finiteness, picks its jump m_i and measures
+    // delta_i. Returns the largest |delta_i|, stopping early above `stop_above`. The jump is the
+    // rounded fractional displacement unless that leaves |delta_i| above `stop_above` (or
+    // always, when `exact`): then the exact minimum image. With non-null `jumps` (3 per atom)
+    // and `unwrapped` (x + H m, 3 per atom) it records them.
+    double track(const Box& box, PointsView positions, double stop_above, bool exact,
+                 std::int32_t* jumps, double* unwrapped) const;
+    bool compatible(const Box& box, PointsView positions) const;
+    void build(const Box& box, PointsView positions);
+    void refresh(const Box& box);
+    void clear_pairs();
+
+    VerletOptions options_;
+
+    // The build: box, wrapped fractional positions s0 (3 per atom), candidates by i (CSR) with
+    // an index into a dense table of their shifts S0 relative to the wrapped build positions.
+    std::optional<Box> build_box_;
+    std::size_t atom_count_ = 0;
+    std::vector<double> reference_;
+    NeighborSearch search_;
+    NeighborList raw_;
+    std::vector<std::size_t> candidate_offsets_;
+    PairArray<std::uint32_t> candidate_j_;
+    PairArray<std::uint32_t> candidate_shift_;
+    PairArray<std::int32_t> scratch_;       // S0 per raw candidate, during a build
+    std::vector<std::size_t> cursor_;       // counting-sort cursors, during a build
+    std::vector<std::int32_t> shift_table_; // 3 ints per entry
+    std::vector<double> shift_vectors_;     // H S per entry, for the box of shift_box_
+    Eigen::Matrix3d shift_box_ = Eigen::Matrix3d::Zero();
+
+    // The last update: per-atom jumps m (3 ints) and unwrapped positions x + H m (3 doubles).
+    std::vector<std::int32_t> jumps_;
+    std::vector<double> unwrapped_;
+
+    PairArray<std::uint32_t> i_, j_;
+    PairArray<std::int32_t> shifts_;
+    PairArray<double> distances_, vectors_;
+    std::vector<std::size_t> offsets_;
+
+    std::size_t rebuild_count_ = 0;
+    std::size_t updates_since_build_ = 0;
+};
+
+/// How the cell size h of a build relates to the radii (cells_per_cutoff = r_l / h).
+enum class CellSize {
+    list_radius,       ///< h = r_l: one cell per list radius, 27-cell stencil
+    cutoff,            ///< h = r_c: cells of the cutoff, the stencil reaching two cells
+    half_list_radius,  ///< h = r_l / 2 (the default cells_per_cutoff = 2)
+    third_list_radius, ///< h = r_l / 3
+};
+
+/// cells_per_cutoff (cells per list radius) for a rule: r_l / h.
+TRICELL_API double cells_per_list_radius(CellSize rule, double cutoff, double skin);
+
+/// Stencil entries of the idealised grid: cubic cells of side h = r / k, offsets a in Z^3 whose
+/// cells come closer than r, i.e. sum over axes of max(0, |a| - 1)^2 < k^2 (27 for k = 1, 125
+/// for k = 2). A build tests about density * stencil_cells(k) * h^3 pairs per atom.
+TRICELL_API std::size_t stencil_cells(double cells_per_cutoff);
+
+/// Inputs of the skin cost model, all per atom: costs in any one time unit (measured, e.g. by
+/// benchmarks/verlet_bench.cpp), lengths in the units of the box. With g = 1/2 for half lists
+/// (else 1), r_l = r_c + skin, h = r_l / k and n(k) = stencil_cells(k):
+///     candidates       n_c = g rho (4 pi / 3) r_l^3
+///     build tests      n_t = g rho n(k) h^3
+///     cell visits      n_v = g n(k) / (rho h^3)
+///     C_b = build_per_atom + build_per_test n_t + build_per_cell_visit n_v
+///     C_f = refresh_per_atom + refresh_per_candidate n_c
+///     steps per build  L = 1 + skin / (2 v)
+///     cost per step    C = C_b / L + C_f
+/// The cost of the force loop itself (pairs within r_c) does not depend on the skin and is left
+/// out.
+struct TRICELL_API SkinCostModel {
+    double cutoff = 0;                ///< r_c
+    double density = 0;               ///< rho, atoms per unit volume
+    double displacement_per_step = 0; ///< v: largest atom displacement per step
+    bool half = true;
+    double build_per_atom = 0;        ///< part of a build independent of the radius
+    double build_per_test = 0;        ///< per distance test during a build
+    double build_per_cell_visit = 0;  ///< per (cell, stencil entry) visited during a build
+    double refresh_per_atom = 0;      ///< per step: the displacement check
+    double refresh_per_candidate = 0; ///< per step: filtering one candidate
+    double max_skin = 0;              ///< largest skin considered; 0 means r_c
+
+    /// Throws InvalidArgument naming the offending field and value.
+    void validate() const;
+};
+
+/// The model's prediction for one skin and cell size.
+struct SkinPrediction {
+    double skin = 0;
+    CellSize cell_size = CellSize::half_list_radius;
+    double cells_per_cutoff = 2;     ///< r_l / h, to put into VerletOptions
+    double steps_per_build = 1;      ///< L
+    double candidates_per_atom = 0;  ///< n_c
+    double build_tests_per_atom = 0; ///< n_t
+    double build_cost = 0;           ///< C_b per atom
+    double refresh_cost = 0;         ///< C_f per atom
+    double cost_per_step = 0;        ///< C per atom
+};
+
+/// The model evaluated at one skin and cell-size rule.
+TRICELL_API SkinPrediction predict_skin_cost(const SkinCostModel& model, double skin,
+                                             CellSize cell_size);
+/// The skin in [0, max_skin] minimising the cost per step for one cell-size rule.
+TRICELL_API SkinPrediction tune_skin(const SkinCostModel& model, CellSize cell_size);
+/// The skin and cell-size rule minimising the cost per step.
+TRICELL_API SkinPrediction tune_skin(const SkinCostModel& model);
+
+} // namespace tricell

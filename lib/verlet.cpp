@@ -1,0 +1,599 @@
+#include "tricell/verlet.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <type_traits>
+
+#include <Eigen/SVD>
+
+#include "tricell/error.hpp"
+
+namespace tricell {
+
+namespace {
+
+constexpr double pi = 3.14159265358979323846;
+// Candidates are searched this much beyond r_l (relative to r_l, plus relative to the size of
+// the coordinates), so that rounding in the search, which works on wrapped positions, and in
+// the displacements can never drop a candidate the rule relies on.
+constexpr double candidate_margin = 1e-10;
+constexpr double coordinate_margin = 1e-13;
+// Fractional displacements beyond this are not tracked (their jump would not fit an int); such
+// an atom forces a rebuild, where the search reports the position.
+constexpr double max_tracked = 1e9;
+
+// eps = max(0, ||H0 H^-1|| - 1): how much a pair vector in the current box can grow when mapped
+// back to the build box. Exactly 0 for an unchanged box.
+double box_growth(const Box& built, const Box& box) {
+    if (built.matrix() == box.matrix()) {
+        return 0;
+    }
+    const Eigen::Matrix3d m = built.matrix() * box.inverse();
+    const double norm = Eigen::JacobiSVD<Eigen::Matrix3d>(m).singularValues()[0];
+    return std::max(0.0, norm - 1);
+}
+
+void check_finite(PointsView positions, std::size_t i) {
+    const Eigen::Vector3d r = positions[i];
+    if (!r.allFinite()) {
+        detail::fail<InvalidArgument>("position ", i, " is not finite (got ", r.x(), ", ", r.y(),
+                                      ", ", r.z(), ")");
+    }
+}
+
+void check_view(PointsView positions) {
+    if (positions.size() > 0 && positions.data == nullptr) {
+        detail::fail<InvalidArgument>("positions: null data for ", positions.size(), " points");
+    }
+}
+
+} // namespace
+
+void VerletOptions::validate() const {
+    if (!std::isfinite(cutoff)) {
+        detail::fail<InvalidArgument>("cutoff must be finite (got ", cutoff, ")");
+    }
+    if (!(cutoff > 0)) {
+        detail::fail<InvalidArgument>("cutoff must be > 0 (got ", cutoff, ")");
+    }
+    if (!std::isfinite(skin)) {
+        detail::fail<InvalidArgument>("skin must be finite (got ", skin, ")");
+    }
+    if (!(skin >= 0)) {
+        detail::fail<InvalidArgument>("skin must be >= 0 (got ", skin, ")");
+    }
+    if (!(std::isfinite(cells_per_cutoff) && cells_per_cutoff >= 1)) {
+        detail::fail<InvalidArgument>("cells_per_cutoff must be >= 1 (got ", cells_per_cutoff, ")");
+    }
+    if (threads < 0) {
+        detail::fail<InvalidArgument>("threads must be >= 0 (got ", threads, ")");
+    }
+}
+
+VerletList::VerletList(const VerletOptions& options) : options_(options) {
+    options_.validate();
+}
+
+void VerletList::reset() {
+    build_box_.reset();
+    atom_count_ = 0;
+    candidate_offsets_.clear();
+    candidate_j_.clear();
+    candidate_shift_.clear();
+    updates_since_build_ = 0;
+    clear_pairs();
+}
+
+void VerletList::clear_pairs() {
+    i_.clear();
+    j_.clear();
+    shifts_.clear();
+    distances_.clear();
+    vectors_.clear();
+    offsets_.clear();
+}
+
+bool VerletList::compatible(const Box& box, PointsView positions) const {
+    return build_box_.has_value() && positions.size() == atom_count_ &&
+           box.periodicity() == build_box_->periodicity();
+}
+
+double VerletList::displacement_budget(const Box& box) const {
+    if (!build_box_ || box.periodicity() != build_box_->periodicity()) {
+        return -std::numeric_limits<double>::infinity();
+    }
+    return 0.5 * (options_.skin - box_growth(*build_box_, box) * options_.cutoff);
+}
+
+double VerletList::track(const Box& box, PointsView positions, double stop_above, bool exact,
+                         std::int32_t* jumps, double* unwrapped) const {
+    const Box& built = *build_box_;
+    const Eigen::Matrix3d& h0 = built.matrix();
+    const Eigen::Matrix3d& h = box.matrix();
+    const Eigen::Matrix3d& h_inv = box.inverse();
+    const Periodicity& pbc = built.periodicity();
+    const double stop_above_sq = stop_above * stop_above;
+    double max_sq = 0;
+    for (std::size_t i = 0; i < atom_count_; ++i) {
+        check_finite(positions, i);
+        const Eigen::Vector3d x = positions[i];
+        // u = s - s0; the jump m cancels its integer part along periodic axes.
+        const Eigen::Vector3d u = h_inv * x - Eigen::Map<const Eigen::Vector3d>(&reference_[3 * i]);
+        if (!(u.cwiseAbs().maxCoeff() < max_tracked)) {
+            return std::numeric_limits<double>::infinity();
+        }
+        Eigen::Vector3d m = Eigen::Vector3d::Zero();
+        for (int k = 0; k < 3; ++k) {
+            if (pbc[k]) {
+                m[k] = -std::nearbyint(u[k]);
+            }
+        }
+        Eigen::Vector3d delta = h0 * (u + m);
+        double delta_sq = delta.squaredNorm();
+        if ((exact || delta_sq > stop_above_sq) && pbc.any()) {
+            // Rounding the fractional components is not always the shortest translate in a
+            // skewed box; the exact minimum image decides before the atom counts as moved.
+            // (Below the budget the rounded translate is good enough: the bound holds for any
+            // jump, and the shortest one is shorter still.)
+            const MinimumImage mi = built.minimum_image(Cartesian(delta));
+            m += mi.shift.cast<double>();
+            delta = mi.vector;
+            delta_sq = delta.squaredNorm();
+        }
+        max_sq = std::max(max_sq, delta_sq);
+        if (max_sq > stop_above_sq) {
+            return std::sqrt(max_sq);
+        }
+        if (jumps != nullptr) {
+            const Eigen::Vector3d r = x + h * m;
+            for (int k = 0; k < 3; ++k) {
+                jumps[3 * i + std::size_t(k)] = static_cast<std::int32_t>(m[k]);
+                unwrapped[3 * i + std::size_t(k)] = r[k];
+            }
+        }
+    }
+    return std::sqrt(max_sq);
+}
+
+double VerletList::max_displacement(const Box& box, PointsView positions) const {
+    check_view(positions);
+    if (!compatible(box, positions)) {
+        return std::numeric_limits<double>::infinity();
+    }
+    return track(box, positions, std::numeric_limits<double>::infinity(), true, nullptr, nullptr);
+}
+
+bool VerletList::needs_rebuild(const Box& box, PointsView positions) const {
+    options_.validate();
+    check_view(positions);
+    if (!compatible(box, positions)) {
+        for (std::size_t i = 0; i < positions.size(); ++i) {
+            check_finite(positions, i);
+        }
+        return true;
+    }
+    const double budget = displacement_budget(box);
+    if (budget < 0) {
+        for (std::size_t i = 0; i < positions.size(); ++i) {
+            check_finite(positions, i);
+        }
+        return true;
+    }
+    return track(box, positions, budget, false, nullptr, nullptr) > budget;
+}
+
+bool VerletList::update(const Box& box, PointsView positions) {
+    try {
+        options_.validate();
+        check_view(positions);
+        clear_pairs();
+        bool rebuilt = true;
+        if (compatible(box, positions)) {
+            const double budget = displacement_budget(box);
+            jumps_.resize(3 * atom_count_);
+            unwrapped_.resize(3 * atom_count_);
+            rebuilt = budget < 0 || track(box, positions, budget, false, jumps_.data(),
+                                          unwrapped_.data()) > budget;
+        }
+        if (rebuilt) {
+            build(box, positions);
+        } else {
+            ++updates_since_build_;
+        }
+        refresh(box);
+        return rebuilt;
+    } catch (...) {
+        reset();
+        throw;
+    }
+}
+
+void VerletList::rebuild(const Box& box, PointsView positions) {
+    try {
+        options_.validate();
+        check_view(positions);
+        clear_pairs();
+        build(box, positions);
+        refresh(box);
+    } catch (...) {
+        reset();
+        throw;
+    }
+}
+
+void VerletList::build(const Box& box, PointsView positions) {
+    build_box_.reset();
+    NeighborOptions search_options;
+    double scale = box.matrix().cwiseAbs().maxCoeff();
+    for (std::size_t i = 0; i < positions.size(); ++i) {
+        const double r = Eigen::Vector3d(positions[i]).cwiseAbs().maxCoeff();
+        scale = std::isfinite(r) ? std::max(scale, r) : scale; // the search reports non-finite
+    }
+    search_options.cutoff = list_radius() * (1 + candidate_margin) + coordinate_margin * scale;
+    search_options.half = options_.half;
+    search_options.quantities.shifts = true;
+    search_options.quantities.distances = false;
+    search_options.quantities.vectors = false;
+    search_options.cells_per_cutoff = options_.cells_per_cutoff;
+    search_options.cell_list = options_.cell_list;
+    search_options.max_pairs = options_.max_pairs;
+    search_options.max_cells = options_.max_cells;
+    search_options.threads = options_.threads;
+    search_.build(box, positions, search_options); // validates the positions
+    search_.compute(raw_);
+
+    // Reference: wrapped fractional positions s0 = s - image. Candidates are stored relative
+    // to them, S0 = S + image_j - image_i, which keeps the shifts small (within the reach of
+    // r_l) however far outside the box the caller's positions are.
+    const std::size_t n = positions.size();
+    atom_count_ = n;
+    reference_.resize(3 * n);
+    jumps_.resize(3 * n);
+    unwrapped_.resize(3 * n);
+    const Eigen::Matrix3d& h = box.matrix();
+    for (std::size_t i = 0; i < n; ++i) {
+        const WrappedFractional w = box.wrap(box.to_fractional(Cartesian(positions[i])));
+        const Eigen::Vector3d r = Eigen::Vector3d(positions[i]) - h * w.image.cast<double>();
+        for (std::size_t k = 0; k < 3; ++k) {
+            reference_[3 * i + k] = w.wrapped[int(k)];
+            jumps_[3 * i + k] = -w.image[int(k)]; // this update's m: x + H m is the reference
+            unwrapped_[3 * i + k] = r[int(k)];
+        }
+    }
+
+    // S0 of every candidate, the dense table of the shifts that occur, then the candidates
+    // grouped by i (counting sort).
+    const std::size_t count = raw_.size();
+    const std::uint32_t* is = raw_.i().data();
+    const std::uint32_t* js = raw_.j().data();
+    const std::int32_t* ss = raw_.shifts().data();
+    const std::int32_t* jump = jumps_.data();
+    scratch_.resize(3 * count);
+    std::int32_t* shift0 = scratch_.data();
+    candidate_offsets_.assign(n + 1, 0);
+    std::int32_t lo[3] = {0, 0, 0};
+    std::int32_t hi[3] = {0, 0, 0};
+    for (std::size_t p = 0; p < count; ++p) {
+        const std::size_t i = is[p];
+        const std::size_t j = js[p];
+        ++candidate_offsets_[i + 1];
+        for (std::size_t k = 0; k < 3; ++k) {
+            const std::int32_t v = ss[3 * p + k] + jump[3 * i + k] - jump[3 * j + k];
+            shift0[3 * p + k] = v;
+            lo[k] = std::min(lo[k], v);
+            hi[k] = std::max(hi[k], v);
+        }
+    }
+    const std::size_t extent[3] = {std::size_t(hi[0] - lo[0] + 1), std::size_t(hi[1] - lo[1] + 1),
+                                   std::size_t(hi[2] - lo[2] + 1)};
+    const std::size_t entries = extent[0] * extent[1] * extent[2];
+    shift_table_.resize(3 * entries);
+    for (std::size_t e = 0; e < entries; ++e) {
+        shift_table_[3 * e] = lo[0] + std::int32_t(e / (extent[2] * extent[1]));
+        shift_table_[3 * e + 1] = lo[1] + std::int32_t((e / extent[2]) % extent[1]);
+        shift_table_[3 * e + 2] = lo[2] + std::int32_t(e % extent[2]);
+    }
+    shift_vectors_.resize(3 * entries);
+    shift_box_ = Eigen::Matrix3d::Zero(); // recomputed by refresh()
+
+    std::partial_sum(candidate_offsets_.begin(), candidate_offsets_.end(),
+                     candidate_offsets_.begin());
+    candidate_j_.resize(count);
+    candidate_shift_.resize(count);
+    cursor_.assign(candidate_offsets_.begin(), candidate_offsets_.end() - 1);
+    for (std::size_t p = 0; p < count; ++p) {
+        const std::size_t slot = cursor_[is[p]]++;
+        candidate_j_[slot] = js[p];
+        const std::size_t a = std::size_t(shift0[3 * p] - lo[0]);
+        const std::size_t b = std::size_t(shift0[3 * p + 1] - lo[1]);
+        const std::size_t c = std::size_t(shift0[3 * p + 2] - lo[2]);
+        candidate_shift_[slot] = static_cast<std::uint32_t>((a * extent[1] + b) * extent[2] + c);
+    }
+    raw_.clear();
+
+    build_box_ = box;
+    ++rebuild_count_;
+    updates_since_build_ = 0;
+}
+
+namespace {
+
+// Output columns of a refresh, written through raw pointers into arrays sized for every
+// candidate (PairArray growth does not zero-fill), trimmed to the pairs found at the end.
+struct RefreshColumns {
+    std::uint32_t* i;
+    std::uint32_t* j;
+    std::int32_t* shifts;
+    double* distances;
+    double* vectors;
+};
+
+// The filter over all candidates, grouped by i. Branch-free: every candidate is written at the
+// next free slot and the slot advances only for a pair within the cutoff, so a hit rate near
+// 70 % costs no mispredicted branches. Returns the number of pairs.
+template <bool Shifts, bool Distances, bool Vectors>
+std::size_t filter_candidates(std::size_t n, const std::size_t* offsets,
+                              const std::uint32_t* cand_j, const std::uint32_t* cand_shift,
+                              const double* x, const double* shift_vectors,
+                              const std::int32_t* shift_table, const std::int32_t* jump,
+                              double cutoff_sq, std::size_t* pair_offsets, RefreshColumns out) {
+    std::size_t count = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        pair_offsets[i] = count;
+        // D = (x~_j + H S0) - x~_i, with x~ = x + H m the unwrapped positions.
+        const double xi = x[3 * i];
+        const double yi = x[3 * i + 1];
+        const double zi = x[3 * i + 2];
+        const std::size_t end = offsets[i + 1];
+        for (std::size_t p = offsets[i]; p < end; ++p) {
+            const std::size_t j = cand_j[p];
+            const std::size_t e = cand_shift[p];
+            const double dx = x[3 * j] + shift_vectors[3 * e] - xi;
+            const double dy = x[3 * j + 1] + shift_vectors[3 * e + 1] - yi;
+            const double dz = x[3 * j + 2] + shift_vectors[3 * e + 2] - zi;
+            const double d_sq = dx * dx + dy * dy + dz * dz;
+            out.i[count] = std::uint32_t(i);
+            out.j[count] = std::uint32_t(j);
+            if constexpr (Shifts) {
+                // S = S0 + m_j - m_i, relative to the caller's positions.
+                for (std::size_t k = 0; k < 3; ++k) {
+                    out.shifts[3 * count + k] =
+                        shift_table[3 * e + k] + jump[3 * j + k] - jump[3 * i + k];
+                }
+            }
+            if constexpr (Distances) {
+                out.distances[count] = std::sqrt(d_sq);
+            }
+            if constexpr (Vectors) {
+                out.vectors[3 * count] = dx;
+                out.vectors[3 * count + 1] = dy;
+                out.vectors[3 * count + 2] = dz;
+            }
+            count += d_sq < cutoff_sq ? 1 : 0;
+        }
+    }
+    pair_offsets[n] = count;
+    return count;
+}
+
+} // namespace
+
+void VerletList::refresh(const Box& box) {
+    const Eigen::Matrix3d& h = box.matrix();
+    if (h != shift_box_) {
+        for (std::size_t e = 0; e < shift_vectors_.size() / 3; ++e) {
+            const Eigen::Vector3d v =
+                h * Eigen::Vector3d(shift_table_[3 * e], shift_table_[3 * e + 1],
+                                    shift_table_[3 * e + 2]);
+            shift_vectors_[3 * e] = v.x();
+            shift_vectors_[3 * e + 1] = v.y();
+            shift_vectors_[3 * e + 2] = v.z();
+        }
+        shift_box_ = h;
+    }
+    const Quantities& q = options_.quantities;
+    const std::size_t n = atom_count_;
+    const std::size_t capacity = candidate_j_.size();
+    i_.resize(capacity);
+    j_.resize(capacity);
+    shifts_.resize(q.shifts ? 3 * capacity : 0);
+    distances_.resize(q.distances ? capacity : 0);
+    vectors_.resize(q.vectors ? 3 * capacity : 0);
+    offsets_.resize(n + 1);
+    const RefreshColumns out{i_.data(), j_.data(), shifts_.data(), distances_.data(),
+                             vectors_.data()};
+    const double cutoff_sq = options_.cutoff * options_.cutoff;
+    auto run = [&](auto shifts, auto distances, auto vectors) {
+        return filter_candidates<decltype(shifts)::value, decltype(distances)::value,
+                                 decltype(vectors)::value>(
+            n, candidate_offsets_.data(), candidate_j_.data(), candidate_shift_.data(),
+            unwrapped_.data(), shift_vectors_.data(), shift_table_.data(), jumps_.data(), cutoff_sq,
+            offsets_.data(), out);
+    };
+    using Yes = std::true_type;
+    using No = std::false_type;
+    std::size_t count = 0;
+    const int which = (q.shifts ? 4 : 0) + (q.distances ? 2 : 0) + (q.vectors ? 1 : 0);
+    switch (which) {
+    case 0:
+        count = run(No{}, No{}, No{});
+        break;
+    case 1:
+        count = run(No{}, No{}, Yes{});
+        break;
+    case 2:
+        count = run(No{}, Yes{}, No{});
+        break;
+    case 3:
+        count = run(No{}, Yes{}, Yes{});
+        break;
+    case 4:
+        count = run(Yes{}, No{}, No{});
+        break;
+    case 5:
+        count = run(Yes{}, No{}, Yes{});
+        break;
+    case 6:
+        count = run(Yes{}, Yes{}, No{});
+        break;
+    default:
+        count = run(Yes{}, Yes{}, Yes{});
+        break;
+    }
+    i_.resize(count);
+    j_.resize(count);
+    shifts_.resize(q.shifts ? 3 * count : 0);
+    distances_.resize(q.distances ? count : 0);
+    vectors_.resize(q.vectors ? 3 * count : 0);
+}
+
+// ---- cost model ------------------------------------------------------------------------------
+
+double cells_per_list_radius(CellSize rule, double cutoff, double skin) {
+    switch (rule) {
+    case CellSize::list_radius:
+        return 1;
+    case CellSize::cutoff:
+        return (cutoff + skin) / cutoff;
+    case CellSize::half_list_radius:
+        return 2;
+    case CellSize::third_list_radius:
+        return 3;
+    }
+    return 2;
+}
+
+std::size_t stencil_cells(double cells_per_cutoff) {
+    if (!(std::isfinite(cells_per_cutoff) && cells_per_cutoff >= 1 && cells_per_cutoff < 1e3)) {
+        detail::fail<InvalidArgument>("cells_per_cutoff must be in [1, 1000) (got ",
+                                      cells_per_cutoff, ")");
+    }
+    const int reach = int(std::ceil(cells_per_cutoff));
+    const double k_sq = cells_per_cutoff * cells_per_cutoff;
+    auto gap = [](int a) {
+        const int g = std::max(0, std::abs(a) - 1);
+        return double(g) * double(g);
+    };
+    std::size_t count = 0;
+    for (int a = -reach; a <= reach; ++a) {
+        for (int b = -reach; b <= reach; ++b) {
+            for (int c = -reach; c <= reach; ++c) {
+                if (gap(a) + gap(b) + gap(c) < k_sq) {
+                    ++count;
+                }
+            }
+        }
+    }
+    return count;
+}
+
+void SkinCostModel::validate() const {
+    auto positive = [](const char* name, double v) {
+        if (!(std::isfinite(v) && v > 0)) {
+            detail::fail<InvalidArgument>(name, " must be > 0 (got ", v, ")");
+        }
+    };
+    auto non_negative = [](const char* name, double v) {
+        if (!(std::isfinite(v) && v >= 0)) {
+            detail::fail<InvalidArgument>(name, " must be >= 0 (got ", v, ")");
+        }
+    };
+    positive("cutoff", cutoff);
+    positive("density", density);
+    positive("displacement_per_step", displacement_per_step);
+    non_negative("build_per_atom", build_per_atom);
+    non_negative("build_per_test", build_per_test);
+    non_negative("build_per_cell_visit", build_per_cell_visit);
+    non_negative("refresh_per_atom", refresh_per_atom);
+    non_negative("refresh_per_candidate", refresh_per_candidate);
+    non_negative("max_skin", max_skin);
+}
+
+SkinPrediction predict_skin_cost(const SkinCostModel& model, double skin, CellSize cell_size) {
+    model.validate();
+    if (!(std::isfinite(skin) && skin >= 0)) {
+        detail::fail<InvalidArgument>("skin must be >= 0 (got ", skin, ")");
+    }
+    const double g = model.half ? 0.5 : 1.0;
+    const double rho = model.density;
+    const double r = model.cutoff + skin;
+    SkinPrediction p;
+    p.skin = skin;
+    p.cell_size = cell_size;
+    p.cells_per_cutoff = cells_per_list_radius(cell_size, model.cutoff, skin);
+    const double h = r / p.cells_per_cutoff;
+    const double cells = double(stencil_cells(p.cells_per_cutoff));
+    p.steps_per_build = 1 + skin / (2 * model.displacement_per_step);
+    p.candidates_per_atom = g * rho * 4.0 / 3.0 * pi * r * r * r;
+    p.build_tests_per_atom = g * rho * cells * h * h * h;
+    const double visits = g * cells / (rho * h * h * h);
+    p.build_cost = model.build_per_atom + model.build_per_test * p.build_tests_per_atom +
+                   model.build_per_cell_visit * visits;
+    p.refresh_cost = model.refresh_per_atom + model.refresh_per_candidate * p.candidates_per_atom;
+    p.cost_per_step = p.build_cost / p.steps_per_build + p.refresh_cost;
+    return p;
+}
+
+SkinPrediction tune_skin(const SkinCostModel& model, CellSize cell_size) {
+    model.validate();
+    const double max_skin = model.max_skin > 0 ? model.max_skin : model.cutoff;
+    // A fine scan (the cost is smooth in the skin except where the h = r_c stencil changes),
+    // then golden-section refinement around the best point.
+    constexpr int samples = 2000;
+    auto cost = [&](double skin) {
+        return predict_skin_cost(model, skin, cell_size).cost_per_step;
+    };
+    int best = 0;
+    double best_cost = cost(0);
+    for (int s = 1; s <= samples; ++s) {
+        const double c = cost(max_skin * s / samples);
+        if (c < best_cost) {
+            best = s;
+            best_cost = c;
+        }
+    }
+    double lo = max_skin * std::max(0, best - 1) / samples;
+    double hi = max_skin * std::min(samples, best + 1) / samples;
+    const double ratio = (std::sqrt(5.0) - 1) / 2;
+    double a = hi - ratio * (hi - lo);
+    double b = lo + ratio * (hi - lo);
+    double ca = cost(a);
+    double cb = cost(b);
+    for (int it = 0; it < 60; ++it) {
+        if (ca < cb) {
+            hi = b;
+            b = a;
+            cb = ca;
+            a = hi - ratio * (hi - lo);
+            ca = cost(a);
+        } else {
+            lo = a;
+            a = b;
+            ca = cb;
+            b = lo + ratio * (hi - lo);
+            cb = cost(b);
+        }
+    }
+    double skin = max_skin * best / samples;
+    const double refined = 0.5 * (lo + hi);
+    if (cost(refined) < best_cost) {
+        skin = refined;
+    }
+    return predict_skin_cost(model, skin, cell_size);
+}
+
+SkinPrediction tune_skin(const SkinCostModel& model) {
+    SkinPrediction best = tune_skin(model, CellSize::list_radius);
+    for (const CellSize rule :
+         {CellSize::cutoff, CellSize::half_list_radius, CellSize::third_list_radius}) {
+        const SkinPrediction p = tune_skin(model, rule);
+        if (p.cost_per_step < best.cost_per_step) {
+            best = p;
+        }
+    }
+    return best;
+}
+
+} // namespace tricell
