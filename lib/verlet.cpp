@@ -87,12 +87,12 @@ void VerletList::reset() {
 }
 
 void VerletList::clear_pairs() {
-    i_.clear();
-    j_.clear();
-    shifts_.clear();
-    distances_.clear();
-    vectors_.clear();
-    offsets_.clear();
+    pairs_.i_.clear();
+    pairs_.j_.clear();
+    pairs_.shifts_.clear();
+    pairs_.distances_.clear();
+    pairs_.vectors_.clear();
+    pairs_.offsets_.clear();
 }
 
 bool VerletList::compatible(const Box& box, PointsView positions) const {
@@ -396,21 +396,21 @@ void VerletList::refresh(const Box& box) {
     const Quantities& q = options_.quantities;
     const std::size_t n = atom_count_;
     const std::size_t capacity = candidate_j_.size();
-    i_.resize(capacity);
-    j_.resize(capacity);
-    shifts_.resize(q.shifts ? 3 * capacity : 0);
-    distances_.resize(q.distances ? capacity : 0);
-    vectors_.resize(q.vectors ? 3 * capacity : 0);
-    offsets_.resize(n + 1);
-    const RefreshColumns out{i_.data(), j_.data(), shifts_.data(), distances_.data(),
-                             vectors_.data()};
+    pairs_.i_.resize(capacity);
+    pairs_.j_.resize(capacity);
+    pairs_.shifts_.resize(q.shifts ? 3 * capacity : 0);
+    pairs_.distances_.resize(q.distances ? capacity : 0);
+    pairs_.vectors_.resize(q.vectors ? 3 * capacity : 0);
+    pairs_.offsets_.resize(n + 1);
+    const RefreshColumns out{pairs_.i_.data(), pairs_.j_.data(), pairs_.shifts_.data(),
+                             pairs_.distances_.data(), pairs_.vectors_.data()};
     const double cutoff_sq = options_.cutoff * options_.cutoff;
     auto run = [&](auto shifts, auto distances, auto vectors) {
         return filter_candidates<decltype(shifts)::value, decltype(distances)::value,
                                  decltype(vectors)::value>(
             n, candidate_offsets_.data(), candidate_j_.data(), candidate_shift_.data(),
             unwrapped_.data(), shift_vectors_.data(), shift_table_.data(), jumps_.data(), cutoff_sq,
-            offsets_.data(), out);
+            pairs_.offsets_.data(), out);
     };
     using Yes = std::true_type;
     using No = std::false_type;
@@ -442,11 +442,11 @@ void VerletList::refresh(const Box& box) {
         count = run(Yes{}, Yes{}, Yes{});
         break;
     }
-    i_.resize(count);
-    j_.resize(count);
-    shifts_.resize(q.shifts ? 3 * count : 0);
-    distances_.resize(q.distances ? count : 0);
-    vectors_.resize(q.vectors ? 3 * count : 0);
+    pairs_.i_.resize(count);
+    pairs_.j_.resize(count);
+    pairs_.shifts_.resize(q.shifts ? 3 * count : 0);
+    pairs_.distances_.resize(q.distances ? count : 0);
+    pairs_.vectors_.resize(q.vectors ? 3 * count : 0);
 }
 
 // ---- cost model ------------------------------------------------------------------------------

@@ -190,7 +190,7 @@ class LjSimulation {
     void compute_forces() {
         if (options_.mode == NeighborMode::verlet) {
             verlet_.update(sys_.box, sys_.positions);
-            potential_ = lj_forces(verlet_, options_.cutoff, sys_.forces);
+            potential_ = lj_forces(verlet_.pairs(), options_.cutoff, sys_.forces);
         } else {
             tricell::compute_neighbors(sys_.box, sys_.positions, neighbor_options_, list_);
             potential_ = lj_forces(list_, options_.cutoff, sys_.forces);

@@ -128,6 +128,7 @@ class TRICELL_API NeighborList {
 
   private:
     friend class NeighborSearch;
+    friend class VerletList;
     PairArray<std::uint32_t> i_, j_;
     PairArray<std::int32_t> shifts_;
     PairArray<double> distances_, vectors_;

@@ -125,25 +125,10 @@ class TRICELL_API VerletList {
     /// Forgets the candidates (the next update() rebuilds) and the stored pairs. Keeps buffers.
     void reset();
 
-    // The pairs of the last update(), struct-of-arrays, as in NeighborList.
-    std::size_t size() const { return i_.size(); }
-    bool empty() const { return i_.empty(); }
-    const PairArray<std::uint32_t>& i() const { return i_; }
-    const PairArray<std::uint32_t>& j() const { return j_; }
-    /// 3 ints per pair (Sa, Sb, Sc), empty unless Quantities::shifts.
-    const PairArray<std::int32_t>& shifts() const { return shifts_; }
-    /// Empty unless Quantities::distances.
-    const PairArray<double>& distances() const { return distances_; }
-    /// 3 doubles per pair (Dx, Dy, Dz), empty unless Quantities::vectors.
-    const PairArray<double>& vectors() const { return vectors_; }
-    /// Pairs of atom i are [offsets[i], offsets[i + 1]).
-    const std::vector<std::size_t>& offsets() const { return offsets_; }
-    Shift shift(std::size_t k) const {
-        return Shift(shifts_[3 * k], shifts_[3 * k + 1], shifts_[3 * k + 2]);
-    }
-    Eigen::Vector3d vector(std::size_t k) const {
-        return Eigen::Vector3d(vectors_[3 * k], vectors_[3 * k + 1], vectors_[3 * k + 2]);
-    }
+    /// The pairs of the last update() as a NeighborList (i, j, S, d, D as asked for in the
+    /// options), grouped by i: pairs().offsets() is filled.
+    const NeighborList& pairs() const { return pairs_; }
+    std::size_t size() const { return pairs_.size(); }
 
     /// Builds so far (each update() that rebuilt, and each rebuild()).
     std::size_t rebuild_count() const { return rebuild_count_; }
@@ -187,10 +172,7 @@ class TRICELL_API VerletList {
     std::vector<std::int32_t> jumps_;
     std::vector<double> unwrapped_;
 
-    PairArray<std::uint32_t> i_, j_;
-    PairArray<std::int32_t> shifts_;
-    PairArray<double> distances_, vectors_;
-    std::vector<std::size_t> offsets_;
+    NeighborList pairs_;
 
     std::size_t rebuild_count_ = 0;
     std::size_t updates_since_build_ = 0;

@@ -62,9 +62,9 @@ VerletOptions verlet_options(double cutoff, double skin, bool half = false) {
 PairMap to_map(const VerletList& list) {
     PairMap out;
     for (std::size_t k = 0; k < list.size(); ++k) {
-        const Shift s = list.shift(k);
-        out[PairKey{list.i()[k], list.j()[k], s[0], s[1], s[2]}] =
-            PairValue{list.distances()[k], list.vector(k)};
+        const Shift s = list.pairs().shift(k);
+        out[PairKey{list.pairs().i()[k], list.pairs().j()[k], s[0], s[1], s[2]}] =
+            PairValue{list.pairs().distances()[k], list.pairs().vector(k)};
     }
     return out;
 }
@@ -461,8 +461,8 @@ TEST(VerletList, OneAtomAndItsImagesInATinyBox) {
     }
     VerletList empty(verlet_options(2, 0.5));
     EXPECT_TRUE(empty.update(box, std::vector<Eigen::Vector3d>{}));
-    EXPECT_TRUE(empty.empty());
-    EXPECT_EQ(empty.offsets(), std::vector<std::size_t>{0});
+    EXPECT_TRUE(empty.pairs().empty());
+    EXPECT_EQ(empty.pairs().offsets(), std::vector<std::size_t>{0});
 }
 
 TEST(VerletList, QuantitiesAndOffsets) {
@@ -474,21 +474,21 @@ TEST(VerletList, QuantitiesAndOffsets) {
     o.quantities = tricell::Quantities{false, false, false};
     VerletList bare(o);
     bare.update(cube10, x);
-    EXPECT_TRUE(bare.shifts().empty());
-    EXPECT_TRUE(bare.distances().empty());
-    EXPECT_TRUE(bare.vectors().empty());
+    EXPECT_TRUE(bare.pairs().shifts().empty());
+    EXPECT_TRUE(bare.pairs().distances().empty());
+    EXPECT_TRUE(bare.pairs().vectors().empty());
     VerletList all(verlet_options(2.5, 0.3));
     all.update(cube10, x);
     ASSERT_EQ(bare.size(), all.size());
-    EXPECT_EQ(bare.i(), all.i());
-    EXPECT_EQ(bare.j(), all.j());
-    ASSERT_EQ(all.offsets().size(), x.size() + 1);
+    EXPECT_EQ(bare.pairs().i(), all.pairs().i());
+    EXPECT_EQ(bare.pairs().j(), all.pairs().j());
+    ASSERT_EQ(all.pairs().offsets().size(), x.size() + 1);
     for (std::size_t i = 0; i < x.size(); ++i) {
-        for (std::size_t k = all.offsets()[i]; k < all.offsets()[i + 1]; ++k) {
-            EXPECT_EQ(all.i()[k], i);
+        for (std::size_t k = all.pairs().offsets()[i]; k < all.pairs().offsets()[i + 1]; ++k) {
+            EXPECT_EQ(all.pairs().i()[k], i);
         }
     }
-    EXPECT_EQ(all.offsets().back(), all.size());
+    EXPECT_EQ(all.pairs().offsets().back(), all.size());
     EXPECT_GE(all.candidate_count(), all.size());
 }
 
@@ -519,18 +519,18 @@ TEST(VerletList, ErrorsNameTheValue) {
     auto x = random_positions(rng, cube10, 10);
     VerletList list(verlet_options(3, 0.5));
     list.update(cube10, x);
-    ASSERT_FALSE(list.empty());
+    ASSERT_FALSE(list.pairs().empty());
     x[3].y() = std::nan("");
     EXPECT_THROW_MSG(list.needs_rebuild(cube10, x), InvalidArgument, "position 3 is not finite");
     EXPECT_THROW_MSG(list.update(cube10, x), InvalidArgument, "position 3 is not finite");
-    EXPECT_TRUE(list.empty());
+    EXPECT_TRUE(list.pairs().empty());
     EXPECT_THROW_MSG(list.update(cube10, x), InvalidArgument, "position 3 is not finite");
     x[3].y() = 1;
     EXPECT_TRUE(list.update(cube10, x));
     EXPECT_TRUE(matches_brute_force(list, cube10, x));
     EXPECT_THROW_MSG(list.update(cube10, tricell::PointsView(nullptr, 10)), InvalidArgument,
                      "positions: null data for 10 points");
-    EXPECT_TRUE(list.empty());
+    EXPECT_TRUE(list.pairs().empty());
 }
 
 // ---- cost model ------------------------------------------------------------------------------
