@@ -3,8 +3,6 @@
 #include <cmath>
 #include <limits>
 
-#include <Eigen/Cholesky>
-
 namespace tricell {
 
 double closest_approach_sq(const Eigen::Matrix3d& h, const Eigen::Vector3d& lower,
@@ -29,26 +27,32 @@ double closest_approach_sq(const Eigen::Matrix3d& h, const Eigen::Vector3d& lowe
                 u[k] = state[k] == 0 ? lower[k] : upper[k];
             }
         }
+        if (n_free == 3) {
+            continue; // the free minimum is u = 0, inside the box only in the case above
+        }
         if (n_free > 0) {
-            // Minimise over the free coordinates: G_FF u_F = -G_FX u_X.
-            Eigen::MatrixXd g_ff(n_free, n_free);
-            Eigen::VectorXd rhs(n_free);
+            // Minimise over the free coordinates: G_FF u_F = -G_FX u_X (1x1 or 2x2).
+            double rhs[2] = {0, 0};
             for (int a = 0; a < n_free; ++a) {
-                rhs[a] = 0;
                 for (int k = 0; k < 3; ++k) {
                     if (state[k] != 2) {
                         rhs[a] -= gram(free_axes[a], k) * u[k];
                     }
                 }
-                for (int b = 0; b < n_free; ++b) {
-                    g_ff(a, b) = gram(free_axes[a], free_axes[b]);
-                }
             }
-            const Eigen::VectorXd solution = g_ff.ldlt().solve(rhs);
+            if (n_free == 1) {
+                u[free_axes[0]] = rhs[0] / gram(free_axes[0], free_axes[0]);
+            } else {
+                const double g00 = gram(free_axes[0], free_axes[0]);
+                const double g01 = gram(free_axes[0], free_axes[1]);
+                const double g11 = gram(free_axes[1], free_axes[1]);
+                const double det = g00 * g11 - g01 * g01; // > 0: H is non-singular
+                u[free_axes[0]] = (g11 * rhs[0] - g01 * rhs[1]) / det;
+                u[free_axes[1]] = (g00 * rhs[1] - g01 * rhs[0]) / det;
+            }
             bool feasible = true;
             for (int a = 0; a < n_free; ++a) {
                 const int k = free_axes[a];
-                u[k] = solution[a];
                 feasible = feasible && u[k] >= lower[k] && u[k] <= upper[k];
             }
             if (!feasible) {
@@ -101,6 +105,12 @@ std::vector<CellOffset> kept_offsets(const CellGrid& grid, const Box& box, doubl
                     slab_gap = std::max(slab_gap, gap);
                 }
                 if (slab_gap >= radius) {
+                    continue;
+                }
+                // The cell centres are one candidate pair: closer than the radius, keep at once.
+                const Eigen::Vector3d centre_offset(d[0] * f[0], d[1] * f[1], d[2] * f[2]);
+                if ((box.matrix() * centre_offset).squaredNorm() < radius_sq) {
+                    kept.push_back(d);
                     continue;
                 }
                 if (closest_approach_sq(box.matrix(), lower, upper) >= radius_sq) {
