@@ -178,8 +178,11 @@ void NeighborSearch::build(const Box& caller_box, PointsView positions,
             "; raise NeighborOptions::max_pairs to allow it");
     }
 
-    stencil_ = options.half ? Stencil::half(grid_, box, search_radius)
-                            : Stencil::full(grid_, box, search_radius);
+    // Exact pruning solves a small quadratic problem per boundary offset (~1000 instructions);
+    // worth it only when an offset leads to more distance tests than that, about N^2 / C / 5.
+    const bool exact_pruning = double(n) * double(n) / double(grid_.cell_count()) > 200;
+    stencil_ = options.half ? Stencil::half(grid_, box, search_radius, exact_pruning)
+                            : Stencil::full(grid_, box, search_radius, exact_pruning);
     // Rows of the stencil: for each (da, db), the hull of its dc (a superset of the kept
     // offsets is always correct; in practice the kept dc already form an interval).
     rows_.clear();

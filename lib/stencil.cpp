@@ -79,8 +79,8 @@ bool lexicographically_positive(const CellOffset& d) {
 // Offsets within the reach whose cells can hold a pair closer than the radius. Cells of
 // fractional size f along an axis: offset delta covers fractional differences in
 // ((delta - 1) f, (delta + 1) f).
-std::vector<CellOffset> kept_offsets(const CellGrid& grid, const Box& box, double radius,
-                                     bool half) {
+std::vector<CellOffset> kept_offsets(const CellGrid& grid, const Box& box, double radius, bool half,
+                                     bool exact) {
     const std::array<int, 3>& m = grid.reach();
     const Eigen::Vector3d& f = grid.cell_size();
     const Eigen::Vector3d& w = box.perpendicular_widths();
@@ -113,7 +113,7 @@ std::vector<CellOffset> kept_offsets(const CellGrid& grid, const Box& box, doubl
                     kept.push_back(d);
                     continue;
                 }
-                if (closest_approach_sq(box.matrix(), lower, upper) >= radius_sq) {
+                if (exact && closest_approach_sq(box.matrix(), lower, upper) >= radius_sq) {
                     continue;
                 }
                 kept.push_back(d);
@@ -125,16 +125,16 @@ std::vector<CellOffset> kept_offsets(const CellGrid& grid, const Box& box, doubl
 
 } // namespace
 
-Stencil Stencil::full(const CellGrid& grid, const Box& box, double search_radius) {
+Stencil Stencil::full(const CellGrid& grid, const Box& box, double search_radius, bool exact) {
     Stencil s;
-    s.offsets_ = kept_offsets(grid, box, search_radius, false);
+    s.offsets_ = kept_offsets(grid, box, search_radius, false, exact);
     s.half_ = false;
     return s;
 }
 
-Stencil Stencil::half(const CellGrid& grid, const Box& box, double search_radius) {
+Stencil Stencil::half(const CellGrid& grid, const Box& box, double search_radius, bool exact) {
     Stencil s;
-    s.offsets_ = kept_offsets(grid, box, search_radius, true);
+    s.offsets_ = kept_offsets(grid, box, search_radius, true, exact);
     s.half_ = true;
     return s;
 }

@@ -32,10 +32,15 @@ using CellOffset = std::array<int, 3>;
 class TRICELL_API Stencil {
   public:
     Stencil() = default;
-    /// Every offset whose cells can hold a pair closer than the search radius.
-    static Stencil full(const CellGrid& grid, const Box& box, double search_radius);
+    /// Every offset whose cells can hold a pair closer than the search radius. With
+    /// `exact = false` only the cheap tests run (the gap across one pair of faces, the distance
+    /// of the cell centres) and offsets they cannot decide are kept: a superset, for grids so
+    /// sparse that solving the closest-approach problem costs more than scanning the cells.
+    static Stencil full(const CellGrid& grid, const Box& box, double search_radius,
+                        bool exact = true);
     /// The zero offset first, then the lexicographically positive half of full().
-    static Stencil half(const CellGrid& grid, const Box& box, double search_radius);
+    static Stencil half(const CellGrid& grid, const Box& box, double search_radius,
+                        bool exact = true);
 
     const std::vector<CellOffset>& offsets() const { return offsets_; }
     std::size_t size() const { return offsets_.size(); }

@@ -94,3 +94,21 @@ TEST(ClosestApproach, MatchesDenseSamplingOfTheBox) {
         EXPECT_GE(exact, sampled * 0.9 - 0.05); // and close to the sampled minimum
     }
 }
+
+TEST(Stencil, CheapPruningKeepsASupersetOfExactPruning) {
+    std::mt19937_64 rng(9);
+    for (int trial = 0; trial < 30; ++trial) {
+        SCOPED_TRACE(trial);
+        const Box box = Box::from_columns(tricell::testing::random_box_matrix(rng, 1, 4, 1.0));
+        const double radius = 3.0 + trial * 0.2;
+        const CellGrid grid = grid_for(box, radius, 1);
+        const Stencil exact = Stencil::full(grid, box, radius, true);
+        const Stencil cheap = Stencil::full(grid, box, radius, false);
+        const std::set<CellOffset> e(exact.offsets().begin(), exact.offsets().end());
+        const std::set<CellOffset> c(cheap.offsets().begin(), cheap.offsets().end());
+        for (const CellOffset& d : e) {
+            EXPECT_EQ(c.count(d), 1u);
+        }
+        EXPECT_GE(c.size(), e.size());
+    }
+}
