@@ -39,7 +39,23 @@ Options:
   -h, --help          this help
 )";
 
+// Peak resident memory of this process image. VmHWM from /proc is reset by exec; getrusage's
+// ru_maxrss is not (it would report a large parent's memory after fork + exec), so it is only
+// the fallback where /proc is missing.
 double peak_rss_mb() {
+    if (std::FILE* status = std::fopen("/proc/self/status", "r")) {
+        char line[256];
+        double kilobytes = -1;
+        while (std::fgets(line, sizeof line, status) != nullptr) {
+            if (std::sscanf(line, "VmHWM: %lf kB", &kilobytes) == 1) {
+                break;
+            }
+        }
+        std::fclose(status);
+        if (kilobytes >= 0) {
+            return kilobytes / 1024.0;
+        }
+    }
     rusage usage{};
     getrusage(RUSAGE_SELF, &usage);
     return double(usage.ru_maxrss) / 1024.0; // kilobytes on Linux
