@@ -50,10 +50,19 @@ Box::Box(const Eigen::Matrix3d& h, Periodicity pbc) : h_(h), pbc_(pbc) {
         }
     }
     det_ = h_.determinant();
-    const double edge_product = h_.col(0).norm() * h_.col(1).norm() * h_.col(2).norm();
-    if (!(std::abs(det_) > flatness_tolerance * edge_product)) {
-        detail::fail<GeometryError>("box is singular or nearly flat: |det H| = ", std::abs(det_),
-                                    " while |a||b||c| = ", edge_product);
+    // Flatness is judged on unit vectors, det(H) / (|a||b||c|), which neither overflows nor
+    // underflows for boxes of any scale.
+    Eigen::Matrix3d unit = h_;
+    for (int axis = 0; axis < 3; ++axis) {
+        const double length = h_.col(axis).norm();
+        unit.col(axis) =
+            length > 0 ? Eigen::Vector3d(h_.col(axis) / length) : Eigen::Vector3d::Zero();
+    }
+    const double flatness = std::abs(unit.determinant());
+    if (!(flatness > flatness_tolerance) || !(std::abs(det_) > 0)) {
+        detail::fail<GeometryError>(
+            "box is singular or nearly flat: |det H| / (|a||b||c|) = ", flatness,
+            " (|det H| = ", std::abs(det_), "; at most ", flatness_tolerance, " is flat)");
     }
     h_inv_ = h_.inverse();
     for (int axis = 0; axis < 3; ++axis) {

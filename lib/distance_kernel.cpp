@@ -1,5 +1,7 @@
 #include "tricell/detail/distance_kernel.hpp"
 
+#include <cmath>
+
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
 #define TRICELL_HAVE_AVX2_KERNEL 1
 #include <immintrin.h>
@@ -123,6 +125,19 @@ std::uint32_t within_cutoff_portable(const double* x, const double* y, const dou
                                      std::uint32_t count, double ax, double ay, double az,
                                      double cutoff_sq, std::uint32_t* hits, double* hit_d_sq) {
     return within_cutoff_generic(x, y, z, count, ax, ay, az, cutoff_sq, hits, hit_d_sq);
+}
+
+double strict_threshold_sq(double cutoff) {
+    // The largest x with sqrt(x) < cutoff (sqrt is correctly rounded, hence monotonic), then
+    // the next double above it.
+    double x = cutoff * cutoff;
+    while (x > 0 && std::sqrt(x) >= cutoff) {
+        x = std::nextafter(x, 0.0);
+    }
+    while (std::sqrt(std::nextafter(x, HUGE_VAL)) < cutoff) {
+        x = std::nextafter(x, HUGE_VAL);
+    }
+    return std::nextafter(x, HUGE_VAL);
 }
 
 const char* distance_kernel_name() {

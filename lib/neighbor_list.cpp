@@ -38,8 +38,15 @@ void gather(PairArray<T>& v, const std::vector<std::size_t>& perm, std::size_t w
 template <class Task> void run_in_threads(std::size_t count, Task&& task) {
     std::vector<std::thread> workers;
     workers.reserve(count > 0 ? count - 1 : 0);
-    for (std::size_t t = 1; t < count; ++t) {
-        workers.emplace_back([&task, t] { task(t); });
+    try {
+        for (std::size_t t = 1; t < count; ++t) {
+            workers.emplace_back([&task, t] { task(t); });
+        }
+    } catch (...) { // could not start a thread: finish the started ones, then report
+        for (std::thread& w : workers) {
+            w.join();
+        }
+        throw;
     }
     if (count > 0) {
         task(0);
@@ -61,8 +68,11 @@ void NeighborOptions::validate() const {
     if (!(std::isfinite(cells_per_cutoff) && cells_per_cutoff >= 1)) {
         detail::fail<InvalidArgument>("cells_per_cutoff must be >= 1 (got ", cells_per_cutoff, ")");
     }
-    if (threads < 0) {
-        detail::fail<InvalidArgument>("threads must be >= 0 (got ", threads, ")");
+    if (threads < 0 || threads > 1024) {
+        detail::fail<InvalidArgument>("threads must be in [0, 1024] (got ", threads, ")");
+    }
+    if (max_cells > (std::size_t(1) << 31)) {
+        detail::fail<InvalidArgument>("max_cells must be at most 2^31 (got ", max_cells, ")");
     }
 }
 
@@ -108,6 +118,11 @@ Box search_frame(const Box& box, bool allow_reduction, Eigen::Matrix3i& transfor
 
 void NeighborSearch::build(const Box& caller_box, PointsView positions,
                            const NeighborOptions& options) {
+    // Until this build succeeds the object holds no usable search (a failed build must not
+    // leave a grid of one configuration with the cell lists of another).
+    built_ = false;
+    sorted_ = SortedCellList();
+    linked_ = LinkedCellList();
     options.validate();
     const std::size_t n = positions.size();
     if (n >= std::size_t(std::numeric_limits<std::int32_t>::max())) {
@@ -128,7 +143,7 @@ void NeighborSearch::build(const Box& caller_box, PointsView positions,
     const Box box = search_frame(caller_box, options.reduce_cell, to_caller_);
     reduced_frame_ = to_caller_ != Eigen::Matrix3i::Identity();
     h_ = box.matrix();
-    cutoff_sq_ = options.cutoff * options.cutoff;
+    cutoff_sq_ = detail::strict_threshold_sq(options.cutoff);
     atom_count_ = n;
     const double search_radius = options.cutoff * (1 + search_margin);
 
@@ -249,6 +264,7 @@ void NeighborSearch::build(const Box& caller_box, PointsView positions,
         linked_.build(cell_of, grid_.cell_count());
         sorted_ = SortedCellList();
     }
+    built_ = true;
 }
 
 namespace {
@@ -405,6 +421,9 @@ std::vector<double> NeighborSearch::cell_costs() const {
 
 void NeighborSearch::compute(NeighborList& out) const {
     out.clear();
+    if (!built_) {
+        detail::fail<InvalidArgument>("NeighborSearch::compute() needs a successful build() first");
+    }
     const Quantities& q = options_.quantities;
     const bool keep_shifts = q.shifts || options_.sorted; // sorting needs S
     const std::size_t cells = grid_.cell_count();

@@ -1,5 +1,7 @@
 #include "tricell/verlet.hpp"
 
+#include "tricell/detail/distance_kernel.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -404,7 +406,7 @@ void VerletList::refresh(const Box& box) {
     pairs_.offsets_.resize(n + 1);
     const RefreshColumns out{pairs_.i_.data(), pairs_.j_.data(), pairs_.shifts_.data(),
                              pairs_.distances_.data(), pairs_.vectors_.data()};
-    const double cutoff_sq = options_.cutoff * options_.cutoff;
+    const double cutoff_sq = detail::strict_threshold_sq(options_.cutoff);
     auto run = [&](auto shifts, auto distances, auto vectors) {
         return filter_candidates<decltype(shifts)::value, decltype(distances)::value,
                                  decltype(vectors)::value>(

@@ -89,16 +89,16 @@ int run_bench(const std::vector<std::string>& args) {
             options.quantities.vectors = q.find('D') != std::string::npos;
         } else if (arguments.option("--repeat")) {
             const double k = arguments.real();
-            if (k < 1 || k != double(long(k))) {
-                arguments.fail("--repeat must be a whole number >= 1, got '" + arguments.value() +
-                               "'");
+            if (!(k >= 1 && k <= 1e6) || k != double(long(k))) {
+                arguments.fail("--repeat must be a whole number in [1, 1000000], got '" +
+                               arguments.value() + "'");
             }
             repeat = long(k);
         } else if (arguments.option("--threads")) {
             const double t = arguments.real();
-            if (t < 0 || t != double(int(t))) {
-                arguments.fail("--threads must be a whole number >= 0, got '" + arguments.value() +
-                               "'");
+            if (!(t >= 0 && t <= 1024) || t != double(int(t))) {
+                arguments.fail("--threads must be a whole number in [0, 1024], got '" +
+                               arguments.value() + "'");
             }
             options.threads = int(t);
         } else if (arguments.option("--input-format")) {

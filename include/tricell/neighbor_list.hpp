@@ -57,7 +57,8 @@ struct TRICELL_API NeighborOptions {
     double cells_per_cutoff = 1;
     CellListKind cell_list = CellListKind::sorted;
     /// Refuse (InvalidArgument) when the estimated or actual number of stored pairs exceeds this;
-    /// 0 means no limit. The default, 5e8 pairs, is about 14 GB of i, j, S, d.
+    /// 0 means no limit. The default, 5e8 pairs, is about 14 GB of i, j, S, d
+    /// (26 GB with D).
     std::size_t max_pairs = 500'000'000;
     /// Cap on grid cells; 0 means 4 N + 64. Memory follows atoms, not volume.
     std::size_t max_cells = 0;
@@ -193,6 +194,7 @@ class TRICELL_API NeighborSearch {
     // the cell was reduced).
     Eigen::Matrix3i to_caller_ = Eigen::Matrix3i::Identity();
     bool reduced_frame_ = false;
+    bool built_ = false;
     double cutoff_sq_ = 0;
     std::size_t atom_count_ = 0;
     double estimated_pairs_ = 0;

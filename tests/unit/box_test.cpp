@@ -394,3 +394,11 @@ TEST(Box, ExtremelySkewedBoxNeitherOverflowsNorHangs) {
         (mi.vector - (Eigen::Vector3d(1, 1, 1) + box.matrix() * mi.shift.cast<double>())).norm(),
         1e-6);
 }
+
+TEST(Box, AnyScaleIsValid) {
+    for (const double scale : {1e-90, 1e-30, 1.0, 1e30, 1e90}) { // det H must stay a normal double
+        SCOPED_TRACE(scale);
+        const Box box = Box::from_parameters(scale, scale, scale, 90, 90, 90);
+        EXPECT_NEAR(box.perpendicular_widths()[0] / scale, 1.0, 1e-12);
+    }
+}

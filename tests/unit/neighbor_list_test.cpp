@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "support/expect_throw_msg.hpp"
+#include "tricell/detail/distance_kernel.hpp"
 #include "tricell/error.hpp"
 #include "tricell/neighbor_list.hpp"
 
@@ -165,7 +166,7 @@ TEST(NeighborList, RejectsBadCutoff) {
     o.cells_per_cutoff = 1;
     o.threads = -2;
     EXPECT_THROW_MSG(tricell::compute_neighbors(cube10, x, o), tricell::InvalidArgument,
-                     "threads must be >= 0 (got -2)");
+                     "threads must be in [0, 1024] (got -2)");
 }
 
 TEST(NeighborList, RejectsNonFinitePositionNamingIt) {
@@ -218,4 +219,51 @@ TEST(NeighborList, ErrorLeavesOutputEmptyNotHalfWritten) {
     EXPECT_THROW_MSG(tricell::compute_neighbors(cube10, x, o, list), tricell::InvalidArgument,
                      "more than max_pairs");
     EXPECT_TRUE(list.empty());
+}
+
+TEST(NeighborList, StrictCutoffHoldsToTheLastBit) {
+    // |D| rounds to exactly 5 here; cutoff^2 rounded would let it in.
+    const Box open = Box::from_parameters(20, 20, 20, 90, 90, 90, tricell::Periodicity::none());
+    const std::vector<Eigen::Vector3d> x{
+        {0, 0, 0}, {-1.1332655556774685, -2.9323795585259296, -3.888040548278054}};
+    const NeighborList list = tricell::compute_neighbors(open, x, with_cutoff(5.0));
+    for (std::size_t k = 0; k < list.size(); ++k) {
+        EXPECT_LT(list.distances()[k], 5.0);
+    }
+    for (const double cutoff : {1e-300, 0.1, 1.0, 2.5, 5.0, 7.3, 1e10}) {
+        const double t = tricell::detail::strict_threshold_sq(cutoff);
+        EXPECT_LT(std::sqrt(std::nextafter(t, 0.0)), cutoff) << cutoff;
+        EXPECT_GE(std::sqrt(t), cutoff) << cutoff;
+    }
+}
+
+TEST(NeighborList, TinyCutoffStillFindsCoincidentAtoms) {
+    const std::vector<Eigen::Vector3d> x{{1, 1, 1}, {1, 1, 1}};
+    EXPECT_EQ(tricell::compute_neighbors(cube10, x, with_cutoff(1e-300)).size(), 2u);
+}
+
+TEST(NeighborList, FailedBuildLeavesNoUsableSearch) {
+    tricell::NeighborSearch search;
+    NeighborList list;
+    EXPECT_THROW_MSG(search.compute(list), tricell::InvalidArgument, "needs a successful build");
+    std::vector<Eigen::Vector3d> few(10, Eigen::Vector3d(1, 2, 3));
+    search.build(cube10, few, with_cutoff(10));
+    std::vector<Eigen::Vector3d> many(3000, Eigen::Vector3d(4, 5, 6));
+    NeighborOptions o = with_cutoff(1);
+    o.max_pairs = 10;
+    EXPECT_THROW(search.build(cube10, many, o), tricell::InvalidArgument);
+    EXPECT_THROW_MSG(search.compute(list), tricell::InvalidArgument, "needs a successful build");
+    EXPECT_TRUE(list.empty());
+}
+
+TEST(NeighborList, RejectsAbsurdThreadAndCellCounts) {
+    const std::vector<Eigen::Vector3d> x{{0, 0, 0}};
+    NeighborOptions o = with_cutoff(1);
+    o.threads = 5000;
+    EXPECT_THROW_MSG(tricell::compute_neighbors(cube10, x, o), tricell::InvalidArgument,
+                     "threads must be in [0, 1024] (got 5000)");
+    o.threads = 1;
+    o.max_cells = std::size_t(1) << 40;
+    EXPECT_THROW_MSG(tricell::compute_neighbors(cube10, x, o), tricell::InvalidArgument,
+                     "max_cells must be at most 2^31");
 }

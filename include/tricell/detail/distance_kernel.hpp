@@ -1,6 +1,6 @@
 // The innermost loop of the neighbour search: which points of a contiguous struct-of-arrays
 // range lie within the cutoff of one point. Compiled once per instruction set in the library
-// and chosen at run time (AVX2 where the processor has it, SSE2 otherwise), so the default
+// and chosen at run time (AVX2 where the processor has it, portable C++ otherwise), so the default
 // build stays portable. Both versions compute d^2 = dx*dx + dy*dy + dz*dz in the same order
 // without fused multiply-adds, so their results are bit for bit the same.
 #pragma once
@@ -25,6 +25,11 @@ TRICELL_API std::uint32_t within_cutoff_portable(const double* x, const double* 
                                                  std::uint32_t count, double ax, double ay,
                                                  double az, double cutoff_sq, std::uint32_t* hits,
                                                  double* hit_d_sq);
+
+/// The threshold T with d_sq < T exactly when sqrt(d_sq) < cutoff (for every double d_sq), so
+/// the strict cutoff of the contract holds to the last bit and for tiny cutoffs whose square
+/// underflows. Requires a finite cutoff > 0.
+TRICELL_API double strict_threshold_sq(double cutoff);
 
 /// Name of the kernel chosen on this processor ("avx2" or "generic").
 TRICELL_API const char* distance_kernel_name();
