@@ -454,7 +454,9 @@ void NeighborSearch::compute(NeighborList& out) const {
         const std::size_t chunks = bounds.size() - 1;
 
         // Chunk 0 writes straight into `out`, the others into their own lists.
-        std::vector<NeighborList> partial(chunks - 1);
+        std::vector<NeighborList> partial;
+        partial.swap(out.partial_);
+        partial.resize(chunks - 1);
         std::vector<std::size_t> sizes(chunks, 0);
         std::vector<std::exception_ptr> errors(chunks);
         const double share = std::min(estimated_pairs_ * 1.05 + 16, 1e8) / double(chunks);
@@ -490,6 +492,10 @@ void NeighborSearch::compute(NeighborList& out) const {
             }
             append_in_order(out, partial, sizes, keep_shifts, q.distances, q.vectors);
         }
+        for (NeighborList& list : partial) {
+            list.clear();
+        }
+        out.partial_.swap(partial);
         if (reduced_frame_ && keep_shifts) {
             to_caller_frame(out.shifts_);
         }

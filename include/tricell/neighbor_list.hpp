@@ -134,6 +134,9 @@ class TRICELL_API NeighborList {
     PairArray<std::int32_t> shifts_;
     PairArray<double> distances_, vectors_;
     std::vector<std::size_t> offsets_;
+    // Per-thread lists of a threaded compute(), kept so that their memory is reused by the next
+    // call instead of being faulted in again.
+    std::vector<NeighborList> partial_;
 };
 
 /// The search structure for one configuration: grid, cell list, stencil and wrapped positions.
