@@ -101,17 +101,11 @@ int run_bench(const std::vector<std::string>& args) {
                                arguments.value() + "'");
             }
             options.threads = int(t);
-        } else if (arguments.option("--input-format")) {
-            read_options.format = input_format(arguments, arguments.value());
-        } else if (arguments.positional() && file.empty()) {
-            file = arguments.current();
-        } else {
+        } else if (!take_input(arguments, read_options, file)) {
             arguments.unknown();
         }
     }
-    if (file.empty()) {
-        arguments.fail("missing FILE");
-    }
+    require_file(arguments, file);
     if (!have_cutoff) {
         arguments.fail("missing --cutoff R");
     }

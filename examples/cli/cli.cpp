@@ -179,4 +179,22 @@ void Output::commit() {
     committed_ = true;
 }
 
+bool take_input(Arguments& arguments, io::ReadOptions& read_options, std::string& file) {
+    if (arguments.option("--input-format")) {
+        read_options.format = input_format(arguments, arguments.value());
+        return true;
+    }
+    if (arguments.positional() && file.empty()) {
+        file = arguments.current();
+        return true;
+    }
+    return false;
+}
+
+void require_file(const Arguments& arguments, const std::string& file) {
+    if (file.empty()) {
+        arguments.fail("missing FILE");
+    }
+}
+
 } // namespace tricell::cli

@@ -54,6 +54,12 @@ class Arguments {
 /// Parses "cif", "xyz", "poscar", ... for --input-format (UsageError otherwise).
 io::Format input_format(const Arguments& arguments, const std::string& name);
 
+/// The arguments every command shares: consumes the current argument if it is
+/// --input-format F or the (first) positional FILE, and says whether it did.
+bool take_input(Arguments& arguments, io::ReadOptions& read_options, std::string& file);
+/// UsageError "missing FILE" when no FILE was given.
+void require_file(const Arguments& arguments, const std::string& file);
+
 /// %.17g: reads back as the same double.
 std::string exact(double value);
 /// %.10g: for people.

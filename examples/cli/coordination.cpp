@@ -71,17 +71,11 @@ int run_coordination(const std::vector<std::string>& args) {
             }
         } else if (arguments.option("--bond")) {
             options.bonds.push_back(parse_bond(arguments, arguments.value()));
-        } else if (arguments.option("--input-format")) {
-            read_options.format = input_format(arguments, arguments.value());
-        } else if (arguments.positional() && file.empty()) {
-            file = arguments.current();
-        } else {
+        } else if (!take_input(arguments, read_options, file)) {
             arguments.unknown();
         }
     }
-    if (file.empty()) {
-        arguments.fail("missing FILE");
-    }
+    require_file(arguments, file);
     if (!have_cutoff && options.bonds.empty()) {
         arguments.fail("missing --cutoff R or --bond A-B=R");
     }

@@ -56,17 +56,11 @@ int run_info(const std::vector<std::string>& args) {
         }
         if (arguments.option("--symprec")) {
             symprec = arguments.real();
-        } else if (arguments.option("--input-format")) {
-            read_options.format = input_format(arguments, arguments.value());
-        } else if (arguments.positional() && file.empty()) {
-            file = arguments.current();
-        } else {
+        } else if (!take_input(arguments, read_options, file)) {
             arguments.unknown();
         }
     }
-    if (file.empty()) {
-        arguments.fail("missing FILE");
-    }
+    require_file(arguments, file);
     if (!(symprec > 0)) {
         throw InvalidArgument("symprec must be > 0 (got " + brief(symprec) + ")");
     }
