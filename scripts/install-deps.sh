@@ -12,6 +12,11 @@ packages=(
     libsymspg-dev gemmi-dev tao-pegtl-dev libstb-dev   # tricell::io (spglib, gemmi)
     python3-pymatgen python3-ase python3-numpy          # fixtures and peer benchmarks
     clang-format
+    gfortran                   # the Fortran module and its tests
+    pybind11-dev python3-dev python3-pytest   # the Python module and its tests
+    libopenmpi-dev openmpi-bin # tricell::mpi and its multi-rank tests
+    clang-14 libclang-rt-14-dev   # libFuzzer harnesses
+    libcairo2-dev              # plots (SVG and PNG)
 )
 
 missing=()
