@@ -8,6 +8,9 @@ set(TRICELL_EXPORTED_TARGETS tricell_core)
 if(TARGET tricell_io)
     list(APPEND TRICELL_EXPORTED_TARGETS tricell_io)
 endif()
+if(TARGET tricell_mpi)
+    list(APPEND TRICELL_EXPORTED_TARGETS tricell_mpi)
+endif()
 
 configure_package_config_file(
     "${CMAKE_CURRENT_LIST_DIR}/tricell-config.cmake.in"
