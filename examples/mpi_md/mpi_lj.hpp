@@ -32,7 +32,7 @@ class MpiLjSimulation {
         verlet.cutoff = options.cutoff;
         verlet.skin = options.skin;
         verlet.cells_per_cutoff = options.cells_per_cutoff;
-        verlet.quantities = tricell::Quantities{false, false, true};
+        verlet.quantities = tricell::Quantities{true, true, true}; // the tests compare all
         list_ = tricell::mpi::DistributedVerletList(verlet);
         // Deal the atoms round robin; the first update migrates them to their owners.
         atoms_.payload_width = 6;

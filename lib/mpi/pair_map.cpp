@@ -65,38 +65,51 @@ void sort_pairs(DistributedPairs& p, const Quantities& q) {
 
 void map_pairs(const NeighborList& local, const Halo& halo, bool half, bool sorted,
                const Quantities& quantities, DistributedPairs& out) {
-    out.clear();
     const std::size_t owned = halo.owned_count();
     const auto& ids = halo.ids();
     const auto& images = halo.images();
+    const auto& li = local.i();
+    const auto& lj = local.j();
+    const double* distances = local.distances().data();
+    const double* vectors = local.vectors().data();
     // Shifts are always computed (the half rule needs them) and kept when asked or sorting.
     const bool keep_shifts = quantities.shifts || sorted;
+    // Sized for the most pairs there can be (both orientations of every local pair), then cut.
+    const std::size_t most = 2 * local.size();
+    out.owned.resize(most);
+    out.i.resize(most);
+    out.j.resize(most);
+    out.shifts.resize(keep_shifts ? 3 * most : 0);
+    out.distances.resize(quantities.distances ? most : 0);
+    out.vectors.resize(quantities.vectors ? 3 * most : 0);
+    std::size_t n = 0;
     auto emit = [&](std::size_t a, std::size_t b, double sign, std::size_t k) {
         std::int32_t s[3];
-        for (int c = 0; c < 3; ++c) {
-            s[c] = images[3 * a + std::size_t(c)] - images[3 * b + std::size_t(c)];
+        for (std::size_t c = 0; c < 3; ++c) {
+            s[c] = images[3 * a + c] - images[3 * b + c];
         }
         if (half && !canonical(ids[a], ids[b], s)) {
             return;
         }
-        out.owned.push_back(std::uint32_t(a));
-        out.i.push_back(ids[a]);
-        out.j.push_back(ids[b]);
+        out.owned[n] = std::uint32_t(a);
+        out.i[n] = ids[a];
+        out.j[n] = ids[b];
         if (keep_shifts) {
-            out.shifts.insert(out.shifts.end(), s, s + 3);
+            std::copy(s, s + 3, &out.shifts[3 * n]);
         }
         if (quantities.distances) {
-            out.distances.push_back(local.distances()[k]);
+            out.distances[n] = distances[k];
         }
         if (quantities.vectors) {
-            for (int c = 0; c < 3; ++c) {
-                out.vectors.push_back(sign * local.vectors()[3 * k + std::size_t(c)]);
+            for (std::size_t c = 0; c < 3; ++c) {
+                out.vectors[3 * n + c] = sign * vectors[3 * k + c];
             }
         }
+        ++n;
     };
     for (std::size_t k = 0; k < local.size(); ++k) {
-        const std::size_t a = local.i()[k];
-        const std::size_t b = local.j()[k];
+        const std::size_t a = li[k];
+        const std::size_t b = lj[k];
         if (a < owned) {
             emit(a, b, 1.0, k);
         }
@@ -104,6 +117,12 @@ void map_pairs(const NeighborList& local, const Halo& halo, bool half, bool sort
             emit(b, a, -1.0, k);
         }
     }
+    out.owned.resize(n);
+    out.i.resize(n);
+    out.j.resize(n);
+    out.shifts.resize(keep_shifts ? 3 * n : 0);
+    out.distances.resize(quantities.distances ? n : 0);
+    out.vectors.resize(quantities.vectors ? 3 * n : 0);
     if (sorted) {
         sort_pairs(out, quantities);
         if (!quantities.shifts) {

@@ -59,6 +59,19 @@ inline std::string share_verdict(const std::string& verdict, MPI_Comm comm) {
     return out;
 }
 
+/// True on every rank when every rank holds the same boundaries.
+inline bool agreed_bounds(const mpi::Decomposition& d) {
+    std::vector<double> mine;
+    for (int axis = 0; axis < 3; ++axis) {
+        mine.insert(mine.end(), d.bounds(axis).begin(), d.bounds(axis).end());
+    }
+    std::vector<double> root = mine;
+    MPI_Bcast(root.data(), int(root.size()), MPI_DOUBLE, 0, d.comm());
+    int same = root == mine, all = 0;
+    MPI_Allreduce(&same, &all, 1, MPI_INT, MPI_MIN, d.comm());
+    return all == 1;
+}
+
 /// Every rank's atoms (id, caller position) gathered on rank 0 into id order.
 inline std::vector<Eigen::Vector3d> gather_positions(const mpi::LocalAtoms& atoms, MPI_Comm comm) {
     std::vector<double> mine;
