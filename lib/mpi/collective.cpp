@@ -15,13 +15,16 @@ void check_mpi(int code, const char* call) {
     }
 }
 
-void agree(MPI_Comm comm, const std::string& error) {
+void agree(MPI_Comm comm, const std::string& error, int* min_value) {
     int rank = 0, size = 1;
     MPI_Comm_rank(comm, &rank);
     MPI_Comm_size(comm, &size);
-    const int mine = error.empty() ? size : rank;
-    int first = size;
-    check_mpi(MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, comm), "MPI_Allreduce");
+    int values[2] = {error.empty() ? size : rank, min_value ? *min_value : 0};
+    check_mpi(MPI_Allreduce(MPI_IN_PLACE, values, 2, MPI_INT, MPI_MIN, comm), "MPI_Allreduce");
+    const int first = values[0];
+    if (min_value) {
+        *min_value = values[1];
+    }
     if (first == size) {
         return;
     }

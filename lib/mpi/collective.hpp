@@ -11,8 +11,9 @@
 namespace tricell::mpi::detail {
 
 /// Collective. `error` is this rank's message, empty when it is fine. If any rank failed, every
-/// rank throws InvalidArgument("rank R: message") for the lowest failing rank R.
-void agree(MPI_Comm comm, const std::string& error);
+/// rank throws InvalidArgument("rank R: message") for the lowest failing rank R. With
+/// `min_value`, the same single MPI_Allreduce also replaces *min_value by its minimum over ranks.
+void agree(MPI_Comm comm, const std::string& error, int* min_value = nullptr);
 
 /// Collective. Runs check(), catching what it throws, then agree()s.
 template <class Check> void agreed(MPI_Comm comm, Check&& check) {

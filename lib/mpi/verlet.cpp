@@ -1,5 +1,8 @@
 #include "tricell/mpi/verlet.hpp"
 
+#include <exception>
+#include <string>
+
 #include "collective.hpp"
 #include "pair_map.hpp"
 #include "tricell/error.hpp"

@@ -38,7 +38,7 @@ TEST(MpiVerlet, LjDynamics_FullListsMatchSerialEveryStep_AtomsCrossDomains) {
     mpi_md::MpiLjSimulation sim(d, system, options);
     md_lj::LjSimulation serial(system, options);
     const std::vector<std::uint64_t> first_owned = sim.atoms().ids;
-    const int steps = 120;
+    const int steps = 100;
     for (int step = 0; step <= steps; ++step) {
         SCOPED_TRACE(step);
         if (step > 0) {
