@@ -29,10 +29,10 @@ class MpiLjSimulation {
                     const md_lj::MdOptions& options)
         : decomposition_(decomposition), box_(sys.box), options_(options) {
         tricell::VerletOptions verlet;
-        verlet.cutoff = options.cutoff;
+        verlet.neighbors.cutoff = options.cutoff;
+        verlet.neighbors.cells_per_cutoff = options.cells_per_cutoff;
+        verlet.neighbors.quantities = tricell::Quantities{true, true, true}; // tests compare all
         verlet.skin = options.skin;
-        verlet.cells_per_cutoff = options.cells_per_cutoff;
-        verlet.quantities = tricell::Quantities{true, true, true}; // the tests compare all
         list_ = tricell::mpi::DistributedVerletList(verlet);
         // Deal the atoms round robin; the first update migrates them to their owners.
         atoms_.payload_width = 6;

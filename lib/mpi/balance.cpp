@@ -6,33 +6,42 @@
 #include <cmath>
 
 #include "collective.hpp"
+#include "tricell/cost_model.hpp"
 #include "tricell/error.hpp"
-#include "tricell/verlet.hpp"
 
 namespace tricell::mpi {
 
 using tricell::detail::fail;
 
 void WorkModel::validate() const {
-    if (!(std::isfinite(per_atom) && per_atom >= 0)) {
-        fail<InvalidArgument>("WorkModel::per_atom must be >= 0 (got ", per_atom, ")");
-    }
-    if (!(std::isfinite(per_test) && per_test >= 0)) {
-        fail<InvalidArgument>("WorkModel::per_test must be >= 0 (got ", per_test, ")");
+    const struct {
+        const char* name;
+        double value;
+    } fields[] = {
+        {"per_visit", costs.per_visit}, {"per_atom", costs.per_atom}, {"per_test", costs.per_test}};
+    for (const auto& f : fields) {
+        if (!(std::isfinite(f.value) && f.value >= 0)) {
+            fail<InvalidArgument>("WorkModel::costs.", f.name, " must be >= 0 (got ", f.value, ")");
+        }
     }
     if (max_cells < 1) {
         fail<InvalidArgument>("WorkModel::max_cells must be >= 1 (got 0)");
     }
 }
 
-double cell_work(const WorkModel& model, double cells, double mean_n, double mean_n_sq) {
-    // Tests per cell: n times the atoms of its 27-cell stencil, halved (each pair once), with
-    // the stencil cells as full as the cell itself: (27 / 2) n^2 on average E[n^2].
-    static const double half_stencil = 0.5 * double(stencil_cells(1));
-    return cells * (model.per_atom * mean_n + model.per_test * half_stencil * mean_n_sq);
+namespace {
+
+// Stencil cells of a grid of one cell per cutoff (the K of region_work).
+double stencil_neighbours() {
+    return double(stencil_cells(1));
 }
 
-namespace {
+// region_work of one cell holding n atoms.
+double one_cell_work(double n, const WorkModel& model) {
+    OccupancyMoments m;
+    m.add(n);
+    return region_work(m, stencil_neighbours(), model.costs);
+}
 
 // Global cell occupancies on a grid of about one cutoff per cell (periodic positions wrapped,
 // open ones clamped into the end cells), summed over all ranks.
@@ -94,23 +103,21 @@ Occupancy occupancy(const Decomposition& d, const Box& box, PointsView positions
 std::vector<double> slab_work(const Occupancy& occ, int axis, BalanceRule rule,
                               const WorkModel& model) {
     const int n = occ.n[std::size_t(axis)];
-    std::vector<double> sum(std::size_t(n), 0.0), sum_sq(std::size_t(n), 0.0);
+    std::vector<OccupancyMoments> moments(static_cast<std::size_t>(n));
     for (int a = 0; a < occ.n[0]; ++a) {
         for (int b = 0; b < occ.n[1]; ++b) {
             for (int c = 0; c < occ.n[2]; ++c) {
                 const double v = occ.at(a, b, c);
                 const int k = axis == 0 ? a : axis == 1 ? b : c;
-                sum[std::size_t(k)] += v;
-                sum_sq[std::size_t(k)] += v * v;
+                moments[std::size_t(k)].add(v);
             }
         }
     }
-    const double cells = double(occ.counts.size()) / n;
     std::vector<double> work(static_cast<std::size_t>(n));
     for (std::size_t k = 0; k < work.size(); ++k) {
         work[k] = rule == BalanceRule::equal_atoms
-                      ? sum[k]
-                      : cell_work(model, cells, sum[k] / cells, sum_sq[k] / cells);
+                      ? moments[k].atoms
+                      : region_work(moments[k], stencil_neighbours(), model.costs);
     }
     return work;
 }
@@ -190,7 +197,7 @@ std::vector<double> estimate_rank_work(const Decomposition& decomposition, const
                     share[0][std::size_t(a)] * share[1][std::size_t(b)] * share[2][std::size_t(c)];
                 if (w > 0) {
                     const double v = occ.at(a, b, c);
-                    mine += w * cell_work(model, 1, v, v * v);
+                    mine += w * one_cell_work(v, model);
                 }
             }
         }

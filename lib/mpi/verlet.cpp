@@ -12,8 +12,8 @@ namespace tricell::mpi {
 DistributedVerletList::DistributedVerletList(const VerletOptions& options) : options_(options) {
     options_.validate();
     VerletOptions local = options_;
-    local.half = true;
-    local.quantities = Quantities{false, true, true};
+    local.neighbors.half = true;
+    local.neighbors.quantities = Quantities{false, true, true};
     local_ = VerletList(local);
 }
 
@@ -56,7 +56,8 @@ bool DistributedVerletList::update(const Decomposition& decomposition, const Box
         built_periodicity_ = box.periodicity();
         ++rebuild_count_;
     }
-    detail::map_pairs(local_.pairs(), halo_, options_.half, false, options_.quantities, pairs_);
+    detail::map_pairs(local_.pairs(), halo_, options_.neighbors.half, false,
+                      options_.neighbors.quantities, pairs_);
     return !keep;
 }
 

@@ -41,15 +41,51 @@ double max_over_mean(const std::vector<double>& v) {
     return max / (sum / double(v.size()));
 }
 
-TEST(MpiBalance, CellWork_IsTheMomentFormula) {
+TEST(MpiBalance, WorkModel_ValidatesItsCosts) {
     tricell::mpi::WorkModel model;
-    model.per_atom = 3;
-    model.per_test = 2;
-    // 4 cells with mean 2, mean square 5: 4 (3 * 2 + 2 * 13.5 * 5).
-    EXPECT_DOUBLE_EQ(tricell::mpi::cell_work(model, 4, 2, 5), 4 * (6 + 2 * 13.5 * 5));
-    model.per_atom = -1;
+    model.costs.per_atom = -1;
     EXPECT_THROW_MSG(model.validate(), tricell::InvalidArgument,
-                     "WorkModel::per_atom must be >= 0 (got -1)");
+                     "WorkModel::costs.per_atom must be >= 0 (got -1)");
+}
+
+// The domains share the cells: the total estimate does not depend on where the boundaries are,
+// and on one domain it is region_work of every cell.
+TEST(MpiBalance, RankWork_SharesTheCellsWork) {
+    const Box box = Box::from_lammps(30, 10, 10, 2, -1, 1);
+    const std::vector<Eigen::Vector3d> x = gas_liquid(box, 9);
+    tricell::mpi::Decomposition d(MPI_COMM_WORLD);
+    const tricell::mpi::LocalAtoms atoms = deal(x);
+    auto total = [&] {
+        double sum = 0;
+        for (double w : tricell::mpi::estimate_rank_work(d, box, atoms.points(), 2.0)) {
+            sum += w;
+        }
+        return sum;
+    };
+    const double uniform = total();
+    tricell::mpi::balance(d, box, atoms.points(), 2.0, BalanceRule::moments);
+    EXPECT_NEAR(total(), uniform, 1e-9 * uniform);
+    // The sum over the cells (about one cutoff per axis) of region_work of each.
+    int n[3];
+    for (int k = 0; k < 3; ++k) {
+        n[k] = std::max(1, int(std::floor(box.perpendicular_widths()[k] / 2.0)));
+    }
+    std::vector<double> counts(std::size_t(n[0] * n[1] * n[2]), 0.0);
+    for (const Eigen::Vector3d& p : x) {
+        const tricell::Fractional s = box.wrap(box.to_fractional(tricell::Cartesian(p))).wrapped;
+        int c[3];
+        for (int k = 0; k < 3; ++k) {
+            c[k] = std::min(n[k] - 1, int(std::floor(s[k] * n[k])));
+        }
+        counts[std::size_t((c[0] * n[1] + c[1]) * n[2] + c[2])] += 1;
+    }
+    double expected = 0;
+    for (double v : counts) {
+        tricell::OccupancyMoments one;
+        one.add(v);
+        expected += tricell::region_work(one, 27);
+    }
+    EXPECT_NEAR(uniform, expected, 1e-9 * expected);
 }
 
 TEST(MpiBalance, GasLiquid_MomentsBalanceBestAndListsStayExact) {

@@ -77,10 +77,10 @@ TEST(MpiVerlet, RandomWalkInShearedPartlyPeriodicBox_HalfListsMatchSerial) {
         }
         const double cutoff = 0.4 * Box::from_columns(h0).perpendicular_widths().minCoeff();
         tricell::VerletOptions verlet;
-        verlet.cutoff = cutoff;
+        verlet.neighbors.cutoff = cutoff;
+        verlet.neighbors.half = true;
+        verlet.neighbors.quantities = tricell::Quantities{true, true, true};
         verlet.skin = 0.15 * cutoff;
-        verlet.half = true;
-        verlet.quantities = tricell::Quantities{true, true, true};
         tricell::mpi::DistributedVerletList list(verlet);
         tricell::mpi::Decomposition d(MPI_COMM_WORLD);
         // Every rank walks the same global system and keeps only its own atoms' new positions.

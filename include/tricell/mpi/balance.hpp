@@ -1,18 +1,16 @@
 // Domain boundaries placed by estimated work: equal volume, equal atoms, or the occupancy-moment
 // model of design note 001.
 //
-// The work model. Bin all atoms (over all ranks) into a grid of cells of about the cutoff per
-// axis (perpendicular widths, as the serial search does). A cell-list search with cells of side
-// h ~ r_c tests, for a cell holding n atoms, about n * (sum of the occupancies of its
-// stencil_cells(1) = 27 stencil cells) / 2 pairs. Where the density varies on scales larger than a
-// cell (a liquid slab in a gas) the neighbours hold about as many atoms as the cell itself, so
-// a cell costs about per_atom * n + per_test * (27 / 2) * n^2, and a set of M cells (a slab)
-//     W = M * (per_atom * E[n] + per_test * (27 / 2) * E[n^2]),
+// The work model is the lead's occupancy-moment estimate (tricell/cost_model.hpp, region_work):
+// bin all atoms (over all ranks) into a grid of cells of about the cutoff per axis (perpendicular
+// widths, as the serial search does); a set of C cells (a slab, a domain) paired with
+// K = stencil_cells(1) = 27 stencil cells costs
+//     W = C (c_visit K P[n > 0] + c_atom E[n] + c_test K E[n^2]),
 // with E[n], E[n^2] the first and second moments of its cell occupancies. The second moment is
-// what equal-atom balancing misses: pairs grow with the square of the local density, and the
-// variance of n (clustering) adds to E[n^2] = Var(n) + E[n]^2. per_atom (integration, binning,
-// bookkeeping per atom) is measured in units of one distance test; the default 10 is a guess, not
-// a fit. This is the only place the formula lives (cell_work() below).
+// what equal-atom balancing misses: pairs grow with the square of the local density, and
+// clustering adds its variance, E[n^2] = Var(n) + E[n]^2. The constants are
+// tricell::OccupancyCosts (measured by benchmarks/backend_bench.cpp); nothing here restates the
+// formula.
 //
 // Boundaries. The decomposition is a tensor grid, so each axis is balanced on its own: the
 // per-slab work along that axis (slab k = all cells with index k on the axis) is accumulated
@@ -27,6 +25,7 @@
 #include <vector>
 
 #include "tricell/box.hpp"
+#include "tricell/cost_model.hpp"
 #include "tricell/mpi/decomposition.hpp"
 #include "tricell/mpi/export.hpp"
 #include "tricell/types.hpp"
@@ -36,18 +35,13 @@ namespace tricell::mpi {
 enum class BalanceRule { equal_volume, equal_atoms, moments };
 
 struct TRICELL_MPI_API WorkModel {
-    double per_atom = 10; ///< cost of an atom, in distance tests
-    double per_test = 1;  ///< cost of a distance test
+    /// c_visit, c_atom, c_test of tricell::region_work.
+    OccupancyCosts costs;
     /// Cap on the cells of the occupancy grid (the cells grow when it bites).
     std::size_t max_cells = std::size_t(1) << 21;
     /// Throws InvalidArgument naming the field and value.
     void validate() const;
 };
-
-/// The moment model: work of `cells` cells whose occupancies have mean `mean_n` and mean square
-/// `mean_n_sq` (the formula above).
-TRICELL_MPI_API double cell_work(const WorkModel& model, double cells, double mean_n,
-                                 double mean_n_sq);
 
 /// Collective: sets the boundaries of every axis of the decomposition by the rule, from the
 /// positions of the atoms every rank holds (owned or not; each atom on exactly one rank).
