@@ -14,7 +14,7 @@
 //     ghosts per owned atom      g = (1 + 2 r / l)^3 - 1
 //     neighbour ranks            M = (2 ceil(r / l) + 1)^3 - 1   (once every axis has that many
 //                                    domains; 26 while r < l), one message each way per exchange
-//     bytes per exchange         48 g n per rank (id, y, c per ghost)
+//     bytes per exchange         56 g n per rank (id, y, c, species, radius per ghost)
 // and none of them depends on the number of ranks P. In a triclinic box the fractional halo box
 // is larger than the Cartesian shell (more ghosts, the same pairs). Exchanges are direct to every
 // rank in the halo (no staged forwarding along axes), which is what keeps a halo several domains

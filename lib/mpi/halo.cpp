@@ -23,7 +23,8 @@ struct Record {
     std::uint64_t id;
     double y[3];
     std::int32_t c[3];
-    std::int32_t unused;
+    std::int32_t species;
+    double radius;
 };
 
 // One candidate along one axis: the interval of the destination and the translation.
@@ -93,7 +94,8 @@ std::vector<int> axis_neighbors(const Decomposition& d, int axis, bool periodic,
 } // namespace
 
 void Halo::build(const Decomposition& decomposition, const Box& box,
-                 const std::vector<std::uint64_t>& ids, PointsView positions, double reach) {
+                 const std::vector<std::uint64_t>& ids, PointsView positions, double reach,
+                 const std::vector<double>* radii, const std::vector<std::int32_t>* species) {
     const int me = decomposition.rank();
     std::vector<Fractional> wrapped(positions.size());
     std::vector<Shift> image(positions.size());
@@ -104,6 +106,14 @@ void Halo::build(const Decomposition& decomposition, const Box& box,
         if (positions.size() != ids.size()) {
             fail<InvalidArgument>("halo needs one id per position (", ids.size(), " ids, ",
                                   positions.size(), " positions)");
+        }
+        if (radii && radii->size() != ids.size()) {
+            fail<InvalidArgument>("radii must hold one value per owned atom (", ids.size(),
+                                  " atoms, got ", radii->size(), ")");
+        }
+        if (species && species->size() != ids.size()) {
+            fail<InvalidArgument>("species must hold one value per owned atom (", ids.size(),
+                                  " atoms, got ", species->size(), ")");
         }
         for (std::size_t a = 0; a < positions.size(); ++a) {
             const Eigen::Vector3d x = positions[a];
@@ -154,6 +164,10 @@ void Halo::build(const Decomposition& decomposition, const Box& box,
     y_.resize(3 * owned_);
     images_.resize(3 * owned_);
     ids_.assign(ids.begin(), ids.end());
+    with_radii_ = radii != nullptr;
+    with_species_ = species != nullptr;
+    radii_ = with_radii_ ? *radii : std::vector<double>();
+    species_ = with_species_ ? *species : std::vector<std::int32_t>();
     reference_.resize(3 * owned_);
     sends_.assign(neighbors_.size(), {});
     self_sends_.clear();
@@ -229,7 +243,8 @@ void Halo::exchange(const Decomposition& decomposition, const Box& box, bool fir
         const Eigen::Vector3d t(send.t[0], send.t[1], send.t[2]);
         const Eigen::Vector3d y = Eigen::Vector3d(y_[3 * a], y_[3 * a + 1], y_[3 * a + 2]) + hm * t;
         r.id = ids_[a];
-        r.unused = 0;
+        r.species = with_species_ ? species_[a] : 0;
+        r.radius = with_radii_ ? radii_[a] : 0;
         for (int k = 0; k < 3; ++k) {
             r.y[k] = y[k];
             r.c[k] = images_[3 * a + std::size_t(k)] - send.t[k];
@@ -294,9 +309,17 @@ void Halo::exchange(const Decomposition& decomposition, const Box& box, bool fir
     y_.resize(3 * total);
     images_.resize(3 * total);
     ids_.resize(total);
+    radii_.resize(with_radii_ ? total : 0);
+    species_.resize(with_species_ ? total : 0);
     std::size_t a = owned_;
     auto store = [&](const Record& r) {
         ids_[a] = r.id;
+        if (with_radii_) {
+            radii_[a] = r.radius;
+        }
+        if (with_species_) {
+            species_[a] = r.species;
+        }
         for (int k = 0; k < 3; ++k) {
             y_[3 * a + std::size_t(k)] = r.y[k];
             images_[3 * a + std::size_t(k)] = r.c[k];

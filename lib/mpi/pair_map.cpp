@@ -22,6 +22,8 @@ NeighborOptions local_options(const NeighborOptions& caller) {
     local.half = true;
     local.sorted = false;
     local.quantities = Quantities{false, true, true};
+    local.radii.clear(); // per local atom: set by the caller from the halo
+    local.species.clear();
     return local;
 }
 

@@ -94,6 +94,52 @@ TEST(MpiNeighbors, UnionEqualsSerial_RandomSystems) {
     EXPECT_EQ(cases, TRICELL_MPI_CASES);
 }
 
+// Per-atom radii and species tables: the distributed options hold one value per owned atom,
+// the serial ones one per global atom.
+TEST(MpiNeighbors, UnionEqualsSerial_VariableCutoffs) {
+    for (std::uint64_t seed = 0; seed < 16; ++seed) {
+        SCOPED_TRACE(seed);
+        const RandomSystem sys = random_system(seed);
+        const Box box = sys.box();
+        std::mt19937_64 rng(seed + 77);
+        std::uniform_real_distribution<double> unit(0, 1);
+        const std::size_t n = sys.positions.size();
+        NeighborOptions serial = options_for(sys.cutoff, seed % 4 < 2);
+        serial.cutoff = 0;
+        std::vector<double> radii(n);
+        std::vector<std::int32_t> species(n);
+        for (std::size_t g = 0; g < n; ++g) {
+            radii[g] = 0.6 * sys.cutoff * unit(rng);
+            species[g] = std::int32_t(std::uniform_int_distribution<int>(0, 2)(rng));
+        }
+        const bool by_species = seed % 2 == 1;
+        if (by_species) {
+            serial.species = species;
+            serial.species_cutoffs = {{0, 0, sys.cutoff},
+                                      {0, 1, 0.7 * sys.cutoff},
+                                      {1, 2, 1.2 * sys.cutoff},
+                                      {2, 2, 0.4 * sys.cutoff}}; // 1-1 and 0-2 never count
+        } else {
+            serial.radii = radii;
+        }
+        Decomposition d(MPI_COMM_WORLD, random_dims(rng));
+        LocalAtoms atoms = deal(sys.positions);
+        tricell::mpi::migrate(d, box, atoms);
+        NeighborOptions options = serial;
+        options.radii.clear();
+        options.species.clear();
+        for (std::uint64_t g : atoms.ids) {
+            if (by_species) {
+                options.species.push_back(species[g]);
+            } else {
+                options.radii.push_back(radii[g]);
+            }
+        }
+        const auto pairs = tricell::mpi::compute_neighbors(d, box, atoms, options);
+        EXPECT_EQ(compare_with_serial(pairs, atoms, box, serial, d.comm()), "");
+    }
+}
+
 // A cutoff of several domain widths along an axis cut into as many domains as there are ranks,
 // open along another axis: halos several ranks deep, and a domain's own images.
 TEST(MpiNeighbors, UnionEqualsSerial_CutoffLargerThanDomains) {

@@ -18,6 +18,9 @@
 // D = y_b - y_a = x_j - x_i + H (c_a - c_b): the global pair (id(a), id(b), S = c_a - c_b), S
 // relative to the caller's positions.
 //
+// Per-atom attributes. A build may carry a radius and a species per owned atom (for the
+// variable cutoffs of NeighborOptions); every ghost has its owner's, in radii() and species().
+//
 // Communication. The ranks exchanging ghosts are those whose domains come within h of each other
 // through some T, a symmetric relation both sides compute from the boundaries alone; each pair
 // of neighbour ranks exchanges exactly one message per exchange (empty or not), point to point
@@ -49,10 +52,13 @@ struct HaloStats {
 class TRICELL_MPI_API Halo {
   public:
     /// Collective. Selects and exchanges the ghosts within `reach` (Cartesian, > 0) of each
-    /// domain. positions are the owned atoms' caller positions; every atom must lie in this
-    /// rank's domain (after migrate()), else InvalidArgument on every rank.
+    /// domain. radii / species, when not null (on every rank alike), hold one value per owned
+    /// atom and travel with the ghosts. positions are the owned atoms' caller positions; every atom
+    /// must lie in this rank's domain (after migrate()), else InvalidArgument on every rank.
     void build(const Decomposition& decomposition, const Box& box,
-               const std::vector<std::uint64_t>& ids, PointsView positions, double reach);
+               const std::vector<std::uint64_t>& ids, PointsView positions, double reach,
+               const std::vector<double>* radii = nullptr,
+               const std::vector<std::int32_t>* species = nullptr);
     /// Collective. New caller positions of the same owned atoms (same order), possibly in a new
     /// box of the same periodicity: re-sends the ghosts of the build with fresh positions. Each
     /// atom's image c follows its caller position across wrapping (the rounded fractional jump
@@ -73,6 +79,9 @@ class TRICELL_MPI_API Halo {
     Shift image(std::size_t a) const {
         return Shift(images_[3 * a], images_[3 * a + 1], images_[3 * a + 2]);
     }
+    /// Radius and species per local atom (empty unless the build was given them).
+    const std::vector<double>& radii() const { return radii_; }
+    const std::vector<std::int32_t>& species() const { return species_; }
     /// The other ranks this rank exchanges ghosts with (ascending).
     const std::vector<int>& neighbor_ranks() const { return neighbors_; }
     const HaloStats& stats() const { return stats_; }
@@ -91,6 +100,9 @@ class TRICELL_MPI_API Halo {
     std::vector<double> y_;
     std::vector<std::uint64_t> ids_;
     std::vector<std::int32_t> images_;
+    std::vector<double> radii_;
+    std::vector<std::int32_t> species_;
+    bool with_radii_ = false, with_species_ = false;
     // Fractional y of the owned atoms at the build, to follow their wrapping afterwards.
     std::vector<double> reference_;
     std::vector<int> neighbors_;

@@ -57,7 +57,10 @@ struct TRICELL_MPI_API DistributedPairs {
 class TRICELL_MPI_API DistributedSearch {
   public:
     /// Collective. options as for tricell::NeighborSearch (cutoff, half, quantities, sorted,
-    /// backend and tuning); the atoms must be owned by this rank (migrate() first).
+    /// backend and tuning); the atoms must be owned by this rank (migrate() first). Variable
+    /// cutoffs work too: options.radii and options.species then hold one value per OWNED atom,
+    /// in the order of `atoms` (ghosts get their owners'); the halo reaches twice the largest
+    /// radius over all ranks, or the largest cutoff of options.species_cutoffs.
     void build(const Decomposition& decomposition, const Box& box, const LocalAtoms& atoms,
                const NeighborOptions& options);
     /// This rank's pairs, as the options asked (sorted: by i, then j, then S).
