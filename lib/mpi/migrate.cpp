@@ -1,7 +1,9 @@
 // migrate(): every atom to the owner of its wrapped fractional position (see atoms.hpp).
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <numeric>
+#include <string>
 
 #include "collective.hpp"
 #include "tricell/error.hpp"
@@ -81,7 +83,12 @@ void migrate(const Decomposition& decomposition, const Box& box, LocalAtoms& ato
                                                    atoms.payload_width, " here)"));
 
     // A record is the id, the position and the payload, as doubles (the id's bits copied).
+    // MPI counts are ints: refuse, on every rank, what would not fit one.
     const std::size_t record = 4 + atoms.payload_width;
+    detail::agree(comm, record * atoms.size() <= std::size_t(std::numeric_limits<int>::max())
+                            ? std::string()
+                            : tricell::detail::cat("migrate: ", atoms.size(), " atoms of ", record,
+                                                   " doubles exceed one MPI message"));
     std::vector<int> send_counts(std::size_t(size), 0), send_offsets(std::size_t(size), 0);
     for (int r : own) {
         send_counts[std::size_t(r)] += int(record);
@@ -103,6 +110,14 @@ void migrate(const Decomposition& decomposition, const Box& box, LocalAtoms& ato
     detail::check_mpi(
         MPI_Alltoall(send_counts.data(), 1, MPI_INT, receive_counts.data(), 1, MPI_INT, comm),
         "MPI_Alltoall");
+    std::size_t incoming = 0;
+    for (int c : receive_counts) {
+        incoming += std::size_t(c);
+    }
+    detail::agree(comm, incoming <= std::size_t(std::numeric_limits<int>::max())
+                            ? std::string()
+                            : tricell::detail::cat("migrate: ", incoming / record,
+                                                   " incoming atoms exceed one MPI message"));
     std::partial_sum(receive_counts.begin(), receive_counts.end() - 1, receive_offsets.begin() + 1);
     const std::size_t total = std::size_t(receive_offsets.back() + receive_counts.back());
     std::vector<double> receive(total);
