@@ -613,6 +613,31 @@ SearchInfo NeighborSearch::info() const {
     return info;
 }
 
+UnitWork NeighborSearch::unit_work() const {
+    UnitWork work;
+    if (!state_ || !state_->backend) {
+        return work;
+    }
+    const detail::SearchState& s = *state_;
+    detail::UnitOccupancy occupancy;
+    s.backend->occupancy(occupancy);
+    const std::size_t units = s.backend->unit_count();
+    work.atoms = occupancy.atoms;
+    work.estimated.resize(units);
+    work.measured.resize(units);
+    auto discard = [](void*, const PairBlock&) {};
+    detail::PairSink sink(discard, nullptr, s.to_caller, false);
+    for (std::size_t u = 0; u < units; ++u) {
+        work.estimated[u] = occupancy_work(occupancy.atoms[u], occupancy.neighbours);
+        detail::CandidateScanner scan(s.atoms, s.h, s.cutoff_sq, s.rule, s.options.half,
+                                      s.to_caller, s.reduced_frame, sink);
+        s.backend->visit(u, u + 1, scan);
+        work.measured[u] = double(scan.tests());
+    }
+    sink.finish();
+    return work;
+}
+
 double NeighborSearch::estimated_pairs() const {
     return state_ ? state_->estimated_pairs : 0;
 }
