@@ -21,6 +21,13 @@ module tricell
     integer, parameter, public :: TRICELL_ERROR_OUT_OF_MEMORY = 3
     integer, parameter, public :: TRICELL_ERROR_INTERNAL = 4
 
+    ! Search backends (tricell_backend): the result never depends on the choice.
+    integer, parameter, public :: TRICELL_BACKEND_AUTOMATIC = 0
+    integer, parameter, public :: TRICELL_BACKEND_DENSE = 1
+    integer, parameter, public :: TRICELL_BACKEND_LINKED = 2
+    integer, parameter, public :: TRICELL_BACKEND_HASH = 3
+    integer, parameter, public :: TRICELL_BACKEND_OCTREE = 4
+
     ! The C structs of tricell.h, field for field.
     type, bind(c) :: c_box
         real(c_double) :: vectors(3, 3)
@@ -29,8 +36,15 @@ module tricell
 
     type, bind(c) :: c_neighbor_options
         real(c_double) :: cutoff
-        integer(c_int) :: half, sorted, shifts, distances, vectors, threads
+        integer(c_int) :: half, sorted, shifts, distances, vectors, threads, backend
         integer(c_size_t) :: max_pairs
+        type(c_ptr) :: radii, species, species_cutoffs
+        integer(c_size_t) :: species_cutoff_count
+    end type
+
+    type, bind(c) :: c_species_cutoff
+        integer(c_int32_t) :: a, b
+        real(c_double) :: cutoff
     end type
 
     type, bind(c) :: c_pairs
@@ -44,6 +58,7 @@ module tricell
     !> Call destroy() when done (the type has no finalizer, so copies never free twice).
     type :: tricell_neighbor_list
         type(c_neighbor_options), private :: options
+        type(c_species_cutoff), pointer, contiguous, private :: table(:) => null()
         type(c_ptr), private :: search = c_null_ptr
         type(c_ptr), private :: list = c_null_ptr
         integer :: npairs = 0
@@ -133,14 +148,19 @@ contains
 
     !> A neighbour list for pairs closer than `cutoff` (strict). Optional: half (each pair once),
     !> sorted (by i, j, S, with offsets), shifts and distances (stored unless .false.), vectors
-    !> (stored if .true.), threads (default 1, 0 = all cores). Options are checked by compute().
-    function new_neighbor_list(cutoff, half, sorted, shifts, distances, vectors, threads) &
-            result(self)
+    !> (stored if .true.), threads (default 1, 0 = all cores), backend (TRICELL_BACKEND_*), and a
+    !> per-species cutoff table: species_pairs(:, k) = [a, b] with species_cutoffs(k) (then
+    !> cutoff is 0 and compute() takes species). Options are checked by compute().
+    function new_neighbor_list(cutoff, half, sorted, shifts, distances, vectors, threads, &
+                               backend, species_pairs, species_cutoffs) result(self)
         real(c_double), intent(in) :: cutoff
         logical, intent(in), optional :: half, sorted, shifts, distances, vectors
-        integer, intent(in), optional :: threads
+        integer, intent(in), optional :: threads, backend
+        integer, intent(in), optional :: species_pairs(:, :)
+        real(c_double), intent(in), optional :: species_cutoffs(:)
         type(tricell_neighbor_list) :: self
         integer(c_int) :: status
+        integer :: k
 
         status = c_neighbor_options_init(self%options)
         self%options%cutoff = cutoff
@@ -150,19 +170,33 @@ contains
         if (present(distances)) self%options%distances = merge(1, 0, distances)
         if (present(vectors)) self%options%vectors = merge(1, 0, vectors)
         if (present(threads)) self%options%threads = int(threads, c_int)
+        if (present(backend)) self%options%backend = int(backend, c_int)
+        if (present(species_pairs) .and. present(species_cutoffs)) then
+            allocate (self%table(min(size(species_pairs, 2), size(species_cutoffs))))
+            do k = 1, size(self%table)
+                self%table(k) = c_species_cutoff(int(species_pairs(1, k), c_int32_t), &
+                                                 int(species_pairs(2, k), c_int32_t), &
+                                                 species_cutoffs(k))
+            end do
+        end if
     end function
 
     !> Finds the pairs of positions(3, N) in the box with lattice vectors box(:, 1), box(:, 2),
     !> box(:, 3) and periodicity periodic(3). status is TRICELL_OK (0) or an error code; then
-    !> tricell_errmsg() says what is wrong and the list is empty.
-    subroutine compute(self, positions, box, periodic, status)
+    !> tricell_errmsg() says what is wrong and the list is empty. Variable cutoffs: radii(N)
+    !> (a pair counts when d < r_i + r_j; construct with cutoff 0), or species(N) with the
+    !> constructor's species table.
+    subroutine compute(self, positions, box, periodic, status, radii, species)
         class(tricell_neighbor_list), intent(inout) :: self
         real(c_double), intent(in), contiguous :: positions(:, :)
         real(c_double), intent(in) :: box(3, 3)
         logical, intent(in) :: periodic(3)
         integer, intent(out) :: status
+        real(c_double), intent(in), optional, target, contiguous :: radii(:)
+        integer(c_int32_t), intent(in), optional, target, contiguous :: species(:)
         type(c_box) :: cbox
         type(c_pairs) :: pairs
+        type(c_neighbor_options) :: options
         integer(c_int) :: pbc(3)
 
         call clear_results(self)
@@ -172,6 +206,31 @@ contains
                             // itoa(size(positions, 1)) // ')'
             status = TRICELL_ERROR_INVALID_ARGUMENT
             return
+        end if
+        options = self%options
+        if (present(radii)) then
+            if (size(radii) /= size(positions, 2)) then
+                fortran_error = 'radii has ' // itoa(size(radii)) // ' entries for ' &
+                                // itoa(size(positions, 2)) // ' positions'
+                status = TRICELL_ERROR_INVALID_ARGUMENT
+                return
+            end if
+            if (size(radii) > 0) options%radii = c_loc(radii)
+        end if
+        if (present(species)) then
+            if (size(species) /= size(positions, 2)) then
+                fortran_error = 'species has ' // itoa(size(species)) // ' entries for ' &
+                                // itoa(size(positions, 2)) // ' positions'
+                status = TRICELL_ERROR_INVALID_ARGUMENT
+                return
+            end if
+            if (size(species) > 0) options%species = c_loc(species)
+        end if
+        if (associated(self%table)) then
+            if (size(self%table) > 0) then
+                options%species_cutoffs = c_loc(self%table)
+                options%species_cutoff_count = size(self%table, kind=c_size_t)
+            end if
         end if
         if (.not. c_associated(self%search)) then
             status = c_neighbor_search_create(self%search)
@@ -186,7 +245,7 @@ contains
         status = c_box_from_rows(box, pbc, cbox)
         if (status /= TRICELL_OK) return
         status = c_neighbors(self%search, cbox, positions, int(size(positions, 2), c_size_t), &
-                             self%options, self%list)
+                             options, self%list)
         if (status /= TRICELL_OK) return
         status = c_neighbor_list_pairs(self%list, pairs)
         if (status /= TRICELL_OK) return
@@ -197,6 +256,7 @@ contains
     subroutine destroy(self)
         class(tricell_neighbor_list), intent(inout) :: self
         call clear_results(self)
+        if (associated(self%table)) deallocate (self%table)
         call c_neighbor_search_destroy(self%search)
         call c_neighbor_list_destroy(self%list)
         self%search = c_null_ptr
@@ -230,7 +290,7 @@ contains
     subroutine view_pairs(self, pairs)
         type(tricell_neighbor_list), intent(inout) :: self
         type(c_pairs), intent(in) :: pairs
-        integer(c_size_t), pointer :: offsets(:)
+        integer(c_size_t), pointer, contiguous :: offsets(:)
         integer :: n
 
         n = int(pairs%size)

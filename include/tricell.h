@@ -91,17 +91,45 @@ TRICELL_C_API tricell_status tricell_box_from_parameters(double a, double b, dou
 
 /* ---- Neighbour lists -------------------------------------------------------------------- */
 
-/* Options of tricell_neighbors(). Start from tricell_neighbor_options_init(), then set cutoff.
- * Flags are 0 or 1 (anything else is rejected). */
+/* Which search structure bins the atoms. The result never depends on it (nor on threads), only
+ * the speed does. */
+typedef enum tricell_backend {
+    TRICELL_BACKEND_AUTOMATIC = 0, /* chosen per call from the cost model (the default) */
+    TRICELL_BACKEND_DENSE = 1,     /* a dense cell grid, atoms sorted by cell */
+    TRICELL_BACKEND_LINKED = 2,    /* the same grid as linked cells */
+    TRICELL_BACKEND_HASH = 3,      /* compact hashing of the non-empty cells */
+    TRICELL_BACKEND_OCTREE = 4     /* an adaptive octree */
+} tricell_backend;
+
+/* One entry of a per-species cutoff table: pairs of species a and b (either order) count when
+ * d < cutoff. */
+typedef struct tricell_species_cutoff {
+    int32_t a;
+    int32_t b;
+    double cutoff;
+} tricell_species_cutoff;
+
+/* Options of tricell_neighbors(). Start from tricell_neighbor_options_init(), then set cutoff
+ * (or radii, or species with species_cutoffs). Flags are 0 or 1 (anything else is refused). */
 typedef struct tricell_neighbor_options {
-    double cutoff;    /* pairs with d < cutoff; finite and > 0 */
+    double cutoff;    /* pairs with d < cutoff; finite and > 0 (0 with radii or species) */
     int half;         /* 1: each pair once (see the conventions) */
     int sorted;       /* 1: sorted by i, then j, then S; fills tricell_pairs.offsets */
     int shifts;       /* store S (default 1) */
     int distances;    /* store d (default 1) */
     int vectors;      /* store D (default 0) */
     int threads;      /* threads for the search (default 1, 0 = all cores); same list */
+    int backend;      /* a tricell_backend (default TRICELL_BACKEND_AUTOMATIC); same list */
     size_t max_pairs; /* refuse a list larger than this (default 5e8; 0 = no limit) */
+    /* Variable cutoffs (NULL: unused). radii: N per-atom radii, a pair counts when
+     * d < radii[i] + radii[j]. species: N per-atom species, with species_cutoffs (a table of
+     * species_cutoff_count entries): a pair counts when d < the table's cutoff for its two
+     * species; a pair of species missing from the table never counts. The arrays are read
+     * during tricell_neighbors() only. */
+    const double* radii;
+    const int32_t* species;
+    const tricell_species_cutoff* species_cutoffs;
+    size_t species_cutoff_count;
 } tricell_neighbor_options;
 
 TRICELL_C_API tricell_status tricell_neighbor_options_init(tricell_neighbor_options* options);
@@ -142,7 +170,8 @@ TRICELL_C_API tricell_status tricell_neighbor_list_pairs(const tricell_neighbor_
 /* ---- Verlet lists ----------------------------------------------------------------------- */
 
 /* neighbors.cutoff is r_c; candidates are built at r_c + skin and refreshed by every update.
- * neighbors.sorted must be 0 (the pairs are always grouped by i, with offsets). */
+ * neighbors.sorted is ignored (the pairs are always grouped by i, with offsets); variable
+ * cutoffs (radii, species) are not supported by the Verlet list. */
 typedef struct tricell_verlet_options {
     tricell_neighbor_options neighbors;
     double skin; /* finite and >= 0 */

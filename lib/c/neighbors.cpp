@@ -48,7 +48,8 @@ extern "C" tricell_status tricell_neighbors(tricell_neighbor_search* search, con
         require_pointer(search, "tricell_neighbors", "search");
         require_pointer(box, "tricell_neighbors", "box");
         require_pointer(options, "tricell_neighbors", "options");
-        const NeighborOptions cxx_options = to_options(*options);
+        NeighborOptions& cxx_options = search->options;
+        to_options(*options, n, cxx_options);
         search->search.build(to_box(*box), PointsView(positions, n), cxx_options);
         search->search.compute(list->list);
         list->stored = cxx_options.quantities;

@@ -1,6 +1,10 @@
 #include "translate.hpp"
 
+#include <cstdint>
+#include <limits>
+
 #include "boundary.hpp"
+#include "tricell/error.hpp"
 
 namespace tricell::c_api {
 
@@ -34,8 +38,14 @@ tricell_box to_c_box(const Box& box) {
     return out;
 }
 
-NeighborOptions to_options(const tricell_neighbor_options& options) {
-    NeighborOptions out;
+static_assert(int(SearchBackend::automatic) == TRICELL_BACKEND_AUTOMATIC &&
+                  int(SearchBackend::dense) == TRICELL_BACKEND_DENSE &&
+                  int(SearchBackend::linked) == TRICELL_BACKEND_LINKED &&
+                  int(SearchBackend::hash) == TRICELL_BACKEND_HASH &&
+                  int(SearchBackend::octree) == TRICELL_BACKEND_OCTREE,
+              "tricell_backend follows tricell::SearchBackend");
+
+void to_options(const tricell_neighbor_options& options, std::size_t atoms, NeighborOptions& out) {
     out.cutoff = options.cutoff;
     out.half = require_flag(options.half, "options.half");
     out.sorted = require_flag(options.sorted, "options.sorted");
@@ -43,8 +53,34 @@ NeighborOptions to_options(const tricell_neighbor_options& options) {
     out.quantities.distances = require_flag(options.distances, "options.distances");
     out.quantities.vectors = require_flag(options.vectors, "options.vectors");
     out.threads = options.threads;
+    // Any int fits SearchBackend's underlying type; NeighborOptions::validate() names a bad one.
+    out.backend = static_cast<SearchBackend>(options.backend);
     out.max_pairs = options.max_pairs;
-    return out;
+    // Past the C++ limit on atoms nothing is copied: the search refuses the count itself.
+    const bool copy = atoms < std::size_t(std::numeric_limits<std::int32_t>::max());
+    if (options.radii != nullptr && copy) {
+        out.radii.assign(options.radii, options.radii + atoms);
+    } else {
+        out.radii.clear();
+    }
+    if (options.species != nullptr && copy) {
+        out.species.assign(options.species, options.species + atoms);
+    } else {
+        out.species.clear();
+    }
+    out.species_cutoffs.clear();
+    if (options.species_cutoff_count > 0) {
+        if (options.species_cutoffs == nullptr) {
+            detail::fail<InvalidArgument>("options.species_cutoffs is NULL but "
+                                          "options.species_cutoff_count is ",
+                                          options.species_cutoff_count);
+        }
+        const tricell_species_cutoff* table = options.species_cutoffs;
+        out.species_cutoffs.reserve(options.species_cutoff_count);
+        for (std::size_t k = 0; k < options.species_cutoff_count; ++k) {
+            out.species_cutoffs.push_back(SpeciesCutoff{table[k].a, table[k].b, table[k].cutoff});
+        }
+    }
 }
 
 tricell_neighbor_options to_c_options(const NeighborOptions& options) {
@@ -56,7 +92,12 @@ tricell_neighbor_options to_c_options(const NeighborOptions& options) {
     out.distances = options.quantities.distances ? 1 : 0;
     out.vectors = options.quantities.vectors ? 1 : 0;
     out.threads = options.threads;
+    out.backend = static_cast<int>(options.backend);
     out.max_pairs = options.max_pairs;
+    out.radii = nullptr;
+    out.species = nullptr;
+    out.species_cutoffs = nullptr;
+    out.species_cutoff_count = 0;
     return out;
 }
 

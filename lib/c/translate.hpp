@@ -15,9 +15,10 @@ Periodicity to_periodicity(const int periodic[3]);
 /// The C value of a C++ box.
 tricell_box to_c_box(const Box& box);
 
-/// The C++ options of the C options. Flags must be 0 or 1; the values are left to the C++ API's
-/// own validation (NeighborSearch::build, VerletOptions::validate).
-NeighborOptions to_options(const tricell_neighbor_options& options);
+/// Writes the C options for `atoms` positions into `out` (reusing its vectors' memory). Flags
+/// must be 0 or 1; the values are left to the C++ API's own validation (NeighborSearch::build,
+/// VerletOptions::validate). Reads `atoms` entries of radii and species when they are set.
+void to_options(const tricell_neighbor_options& options, std::size_t atoms, NeighborOptions& out);
 /// The C options of the C++ options (for the defaults).
 tricell_neighbor_options to_c_options(const NeighborOptions& options);
 
@@ -30,6 +31,7 @@ tricell_pairs to_pairs(const NeighborList& list, const Quantities& stored, bool 
 /// The handles of tricell.h.
 struct tricell_neighbor_search {
     tricell::NeighborSearch search;
+    tricell::NeighborOptions options; // of the last call, kept for the memory of its vectors
 };
 
 struct tricell_neighbor_list {

@@ -1,6 +1,8 @@
 // tricell_verlet_*: a VerletList behind a handle; update() reports whether it rebuilt.
 #include "tricell/verlet.hpp"
 
+#include <cstdint>
+
 #include "tricell/error.hpp"
 
 #include "boundary.hpp"
@@ -17,18 +19,17 @@ struct tricell_verlet {
 namespace {
 
 VerletOptions to_verlet_options(const tricell_verlet_options& options) {
-    const NeighborOptions neighbors = to_options(options.neighbors);
-    if (neighbors.sorted) {
-        detail::fail<InvalidArgument>("options.neighbors.sorted must be 0 for a Verlet list "
-                                      "(its pairs are always grouped by i)");
-    }
-    VerletOptions out;
-    out.cutoff = neighbors.cutoff;
+    VerletOptions out; // its neighbours' defaults (cells per list radius) where C has no field
+    // The atom count is not known here. Variable cutoffs are refused by
+    // VerletOptions::validate(), which only needs to see that they are set: a one-atom stand-in
+    // tells it so without reading the caller's arrays.
+    tricell_neighbor_options neighbors = options.neighbors;
+    const double stand_in_radius = 0;
+    const std::int32_t stand_in_species = 0;
+    neighbors.radii = neighbors.radii != nullptr ? &stand_in_radius : nullptr;
+    neighbors.species = neighbors.species != nullptr ? &stand_in_species : nullptr;
+    to_options(neighbors, 1, out.neighbors);
     out.skin = options.skin;
-    out.half = neighbors.half;
-    out.quantities = neighbors.quantities;
-    out.threads = neighbors.threads;
-    out.max_pairs = neighbors.max_pairs;
     out.validate();
     return out;
 }
@@ -39,13 +40,7 @@ extern "C" tricell_status tricell_verlet_options_init(tricell_verlet_options* op
     return guarded([&] {
         require_pointer(options, "tricell_verlet_options_init", "options");
         const VerletOptions defaults;
-        NeighborOptions neighbors;
-        neighbors.cutoff = defaults.cutoff;
-        neighbors.half = defaults.half;
-        neighbors.quantities = defaults.quantities;
-        neighbors.threads = defaults.threads;
-        neighbors.max_pairs = defaults.max_pairs;
-        options->neighbors = to_c_options(neighbors);
+        options->neighbors = to_c_options(defaults.neighbors);
         options->skin = defaults.skin;
     });
 }
@@ -56,7 +51,7 @@ extern "C" tricell_status tricell_verlet_create(const tricell_verlet_options* op
         require_pointer(options, "tricell_verlet_create", "options");
         require_pointer(verlet, "tricell_verlet_create", "verlet");
         const VerletOptions cxx_options = to_verlet_options(*options);
-        *verlet = new tricell_verlet{VerletList(cxx_options), cxx_options.quantities};
+        *verlet = new tricell_verlet{VerletList(cxx_options), cxx_options.neighbors.quantities};
     });
 }
 

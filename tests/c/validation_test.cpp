@@ -2,6 +2,7 @@
 // error's own text where the C++ API finds the problem. Also: failures write nothing (a box
 // keeps its old value, a list is left empty), and a success clears the message.
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <functional>
 #include <limits>
@@ -282,6 +283,65 @@ TEST(CApiValidation, Neighbors_EveryArgumentLeavesTheListEmpty) {
         ASSERT_NE(message.find("max_pairs"), std::string::npos);
         check(call_with(o, xyz(many), many.size()), TRICELL_ERROR_INVALID_ARGUMENT, message);
     }
+    // Backend and variable cutoffs.
+    {
+        tricell_neighbor_options o = good;
+        o.backend = 9;
+        check(call_with(o, xyz(two_atoms), 2), TRICELL_ERROR_INVALID_ARGUMENT,
+              cxx([](auto& c) { c.backend = static_cast<tricell::SearchBackend>(9); }, two_atoms));
+    }
+    const double radii[2] = {0.5, 0.7};
+    const double bad_radii[2] = {0.5, -1};
+    const std::int32_t species[2] = {1, 2};
+    const tricell_species_cutoff table[2] = {{1, 2, 1.2}, {2, 2, 0.8}};
+    const tricell_species_cutoff bad_table[1] = {{1, 2, not_a_number}};
+    struct Variable {
+        const double* radii;
+        const std::int32_t* species;
+        const tricell_species_cutoff* table;
+        std::size_t count;
+        double cutoff;
+    };
+    const Variable variables[] = {
+        {radii, nullptr, nullptr, 0, 1.5},   // radii and a cutoff
+        {bad_radii, nullptr, nullptr, 0, 0}, // a negative radius
+        {radii, species, table, 2, 0},       // radii and species cutoffs
+        {nullptr, species, nullptr, 0, 0},   // species without a table
+        {nullptr, species, bad_table, 1, 0}, // a bad table entry
+        {nullptr, species, table, 2, 1.0},   // a table and a cutoff
+    };
+    for (const Variable& v : variables) {
+        tricell_neighbor_options o = good;
+        o.radii = v.radii;
+        o.species = v.species;
+        o.species_cutoffs = v.table;
+        o.species_cutoff_count = v.count;
+        o.cutoff = v.cutoff;
+        const std::string message = cxx(
+            [&](auto& c) {
+                c.cutoff = v.cutoff;
+                if (v.radii != nullptr) {
+                    c.radii.assign(v.radii, v.radii + 2);
+                }
+                if (v.species != nullptr) {
+                    c.species.assign(v.species, v.species + 2);
+                }
+                for (std::size_t k = 0; k < v.count; ++k) {
+                    c.species_cutoffs.push_back({v.table[k].a, v.table[k].b, v.table[k].cutoff});
+                }
+            },
+            two_atoms);
+        ASSERT_FALSE(message.empty());
+        check(call_with(o, xyz(two_atoms), 2), TRICELL_ERROR_INVALID_ARGUMENT, message);
+    }
+    {
+        tricell_neighbor_options o = good;
+        o.cutoff = 0;
+        o.species = species;
+        o.species_cutoff_count = 3;
+        check(call_with(o, xyz(two_atoms), 2), TRICELL_ERROR_INVALID_ARGUMENT,
+              "options.species_cutoffs is NULL but options.species_cutoff_count is 3");
+    }
     // Positions: NULL for N > 0, non-finite, too far away.
     check(call_with(good, nullptr, 2), TRICELL_ERROR_INVALID_ARGUMENT,
           "positions: null data for 2 points");
@@ -332,27 +392,38 @@ TEST(CApiValidation, Verlet_EveryBranch) {
 
     auto cxx = [](auto set) {
         tricell::VerletOptions o;
-        o.cutoff = 1.5;
+        o.neighbors.cutoff = 1.5;
         o.skin = 0.3;
         set(o);
         return cxx_message([&] { tricell::VerletList list(o); });
     };
+    static const double radius = 1.0;
+    static const tricell_species_cutoff pair_cutoff = {0, 0, 1.0};
     struct Case {
         std::function<void(tricell_verlet_options&)> set_c;
         std::string message;
     };
     const Case cases[] = {
-        {[](auto& o) { o.neighbors.cutoff = -1; }, cxx([](auto& o) { o.cutoff = -1; })},
+        {[](auto& o) { o.neighbors.cutoff = -1; }, cxx([](auto& o) { o.neighbors.cutoff = -1; })},
         {[](auto& o) { o.neighbors.cutoff = not_a_number; },
-         cxx([](auto& o) { o.cutoff = not_a_number; })},
+         cxx([](auto& o) { o.neighbors.cutoff = not_a_number; })},
         {[](auto& o) { o.skin = -0.5; }, cxx([](auto& o) { o.skin = -0.5; })},
         {[](auto& o) { o.skin = infinity; }, cxx([](auto& o) { o.skin = infinity; })},
-        {[](auto& o) { o.neighbors.threads = -2; }, cxx([](auto& o) { o.threads = -2; })},
+        {[](auto& o) { o.neighbors.threads = -2; }, cxx([](auto& o) { o.neighbors.threads = -2; })},
         {[](auto& o) { o.neighbors.half = 3; }, "options.half must be 0 or 1 (got 3)"},
         {[](auto& o) { o.neighbors.vectors = 9; }, "options.vectors must be 0 or 1 (got 9)"},
-        {[](auto& o) { o.neighbors.sorted = 1; },
-         "options.neighbors.sorted must be 0 for a Verlet list (its pairs are always grouped by "
-         "i)"},
+        {[](auto& o) { o.neighbors.backend = 17; },
+         cxx([](auto& o) { o.neighbors.backend = static_cast<tricell::SearchBackend>(17); })},
+        {[](auto& o) { o.neighbors.radii = &radius; }, cxx([](auto& o) {
+             o.neighbors.radii = {1.0, 1.0};
+         })},
+        {[](auto& o) {
+             o.neighbors.species_cutoffs = &pair_cutoff;
+             o.neighbors.species_cutoff_count = 1;
+         },
+         cxx([](auto& o) {
+             o.neighbors.species_cutoffs = {{0, 0, 1.0}};
+         })},
     };
     for (const Case& c : cases) {
         tricell_verlet_options o = good;
@@ -378,7 +449,7 @@ TEST(CApiValidation, Verlet_EveryBranch) {
     const std::vector<Eigen::Vector3d> not_finite = {{0, 0, 0}, {not_a_number, 1, 1}};
     const std::string not_finite_message = cxx_message([&] {
         tricell::VerletOptions o;
-        o.cutoff = 1.5;
+        o.neighbors.cutoff = 1.5;
         o.skin = 0.3;
         tricell::VerletList(o).update(tricell::Box::from_rows(Eigen::Matrix3d::Identity() * 4),
                                       not_finite);

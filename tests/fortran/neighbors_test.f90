@@ -8,14 +8,16 @@ program neighbors_test
     implicit none
 
     interface
-        function check_list(positions, n, box, periodic, cutoff, half, sorted, npairs, i, j, &
+        function check_list(positions, n, box, periodic, cutoff, half, sorted, backend, radii, &
+                            species, table_pairs, table_cutoffs, table_count, npairs, i, j, &
                             shifts, distances, vectors) bind(c, name="tricell_test_check_list")
-            import :: c_int, c_double, c_size_t, c_int32_t
+            import :: c_int, c_double, c_size_t, c_int32_t, c_ptr
             real(c_double), intent(in) :: positions(*), box(*)
-            integer(c_size_t), value :: n, npairs
+            integer(c_size_t), value :: n, npairs, table_count
             integer(c_int), intent(in) :: periodic(3)
             real(c_double), value :: cutoff
-            integer(c_int), value :: half, sorted
+            integer(c_int), value :: half, sorted, backend
+            type(c_ptr), value :: radii, species, table_pairs, table_cutoffs
             integer(c_int32_t), intent(in) :: i(*), j(*), shifts(*)
             real(c_double), intent(in) :: distances(*), vectors(*)
             integer(c_int) :: check_list
@@ -56,9 +58,13 @@ contains
         integer, intent(in) :: seed
         type(tricell_neighbor_list) :: list
         real(c_double) :: box(3, 3), u(3, 3), cutoff, lengths(3), widths(3), r
-        real(c_double), allocatable :: x(:, :)
+        real(c_double), allocatable, target :: x(:, :), radii(:)
+        integer(c_int32_t), allocatable, target :: species(:)
+        ! Species pairs 0-0, 0-1 and 2-2 (1-1, 1-2 and 0-2 are missing: never counted).
+        integer, target :: table_pairs(2, 3) = reshape([0, 0, 0, 1, 2, 2], [2, 3])
+        real(c_double), target :: table_cutoffs(3)
         logical :: periodic(3), half, sorted
-        integer :: n, k, a, status, problems, bits
+        integer :: n, k, a, status, problems, bits, backend, rule
         integer, allocatable :: seeds(:)
 
         call random_seed(size=k)
@@ -100,18 +106,56 @@ contains
         call random_number(r)
         sorted = r < 0.5d0
 
-        list = tricell_neighbor_list(cutoff, half=half, sorted=sorted, vectors=.true.)
-        call list%compute(x, box, periodic, status)
+        call random_number(r)
+        backend = int(4 * r) ! automatic, dense, linked, hash
+        rule = mod(seed, 3) ! 0: one cutoff, 1: radii, 2: species (no pair beyond cutoff)
+        if (n == 0) rule = 0 ! radii(0) cannot be told from no radii
+        allocate (radii(n), species(n))
+        call random_number(radii)
+        radii = cutoff * (0.1d0 + 0.4d0 * radii)
+        species = int(mod([(a, a=1, n)] * 7 + seed, 3), c_int32_t)
+        table_cutoffs = cutoff * [0.5d0, 0.8d0, 1d0]
+        select case (rule)
+        case (0)
+            list = tricell_neighbor_list(cutoff, half=half, sorted=sorted, vectors=.true., &
+                                         backend=backend)
+            call list%compute(x, box, periodic, status)
+        case (1)
+            list = tricell_neighbor_list(0d0, half=half, sorted=sorted, vectors=.true., &
+                                         backend=backend)
+            call list%compute(x, box, periodic, status, radii=radii)
+        case default
+            list = tricell_neighbor_list(0d0, half=half, sorted=sorted, vectors=.true., &
+                                         backend=backend, species_pairs=table_pairs, &
+                                         species_cutoffs=table_cutoffs)
+            call list%compute(x, box, periodic, status, species=species)
+        end select
         if (status /= TRICELL_OK) then
             print '(a, i0, 2a)', 'seed ', seed, ': ', tricell_errmsg()
             failures = failures + 1
             return
         end if
         total_pairs = total_pairs + list%npairs
-        problems = check_list(x, int(n, c_size_t), box, merge(1, 0, periodic), cutoff, &
-                              merge(1, 0, half), merge(1, 0, sorted), &
-                              int(list%npairs, c_size_t), list%i, list%j, list%shifts, &
-                              list%distances, list%vectors)
+        if (rule == 0) then
+            problems = check_list(x, int(n, c_size_t), box, merge(1, 0, periodic), cutoff, &
+                                  merge(1, 0, half), merge(1, 0, sorted), int(backend, c_int), &
+                                  c_null_ptr, c_null_ptr, c_null_ptr, c_null_ptr, 0_c_size_t, &
+                                  int(list%npairs, c_size_t), list%i, list%j, list%shifts, &
+                                  list%distances, list%vectors)
+        else if (rule == 1) then
+            problems = check_list(x, int(n, c_size_t), box, merge(1, 0, periodic), 0d0, &
+                                  merge(1, 0, half), merge(1, 0, sorted), int(backend, c_int), &
+                                  c_loc(radii), c_null_ptr, c_null_ptr, c_null_ptr, 0_c_size_t, &
+                                  int(list%npairs, c_size_t), list%i, list%j, list%shifts, &
+                                  list%distances, list%vectors)
+        else
+            problems = check_list(x, int(n, c_size_t), box, merge(1, 0, periodic), 0d0, &
+                                  merge(1, 0, half), merge(1, 0, sorted), int(backend, c_int), &
+                                  c_null_ptr, c_loc(species), c_loc(table_pairs), &
+                                  c_loc(table_cutoffs), 3_c_size_t, &
+                                  int(list%npairs, c_size_t), list%i, list%j, list%shifts, &
+                                  list%distances, list%vectors)
+        end if
         problems = problems + check_in_fortran(list, x, box, cutoff, sorted)
         if (problems /= 0) then
             print '(a, i0, a, i0, a)', 'seed ', seed, ': ', problems, ' problems'
@@ -205,6 +249,19 @@ contains
         call expect(status == TRICELL_ERROR_INVALID_ARGUMENT, 'positions(4, N) is refused')
         call expect(tricell_errmsg() == 'positions must have 3 rows, positions(3, N) (got 4)', &
                     'the shape message')
+        call list%destroy()
+        list = tricell_neighbor_list(0d0)
+        call list%compute(x, box, [.true., .true., .true.], status, radii=[1d0])
+        call expect(status == TRICELL_ERROR_INVALID_ARGUMENT, 'radii(1) for 2 atoms is refused')
+        call expect(tricell_errmsg() == 'radii has 1 entries for 2 positions', 'the radii message')
+        call list%compute(x, box, [.true., .true., .true.], status, radii=[1d0, -1d0])
+        call expect(status == TRICELL_ERROR_INVALID_ARGUMENT, 'a negative radius is refused')
+        call expect(tricell_errmsg() == 'radii[1] must be finite and >= 0 (got -1)', &
+                    'the C++ radii message')
+        call list%compute(x, box, [.true., .true., .true.], status, radii=[0.6d0, 0.6d0])
+        call expect(status == TRICELL_OK .and. list%npairs == 2, 'radii 0.6 + 0.6 > 1: one pair')
+        call list%destroy()
+        list = tricell_neighbor_list(1.5d0, sorted=.true.)
         box(:, 2) = box(:, 1)
         call list%compute(x, box, [.true., .true., .true.], status)
         call expect(status == TRICELL_ERROR_GEOMETRY, 'a singular box is a geometry error')

@@ -25,14 +25,16 @@ int report(int& problems, const char* what, std::size_t k) {
 } // namespace
 
 // box_columns is the Fortran box(3, 3), lattice vector k in column k; periodic holds 0 or 1.
-// Every quantity is required (shifts, distances and vectors stored). Returns the number of
-// problems found (0: the list is right).
-extern "C" int tricell_test_check_list(const double* positions, std::size_t n,
-                                       const double* box_columns, const int* periodic,
-                                       double cutoff, int half, int sorted, std::size_t npairs,
-                                       const std::int32_t* i, const std::int32_t* j,
-                                       const std::int32_t* shifts, const double* distances,
-                                       const double* vectors) {
+// Every quantity is required (shifts, distances and vectors stored). With radii (n) or species
+// (n) and a table of table_count entries (pairs(2, k), cutoffs(k)) the rule is variable and the
+// list is compared with the C++ one only (tests/c checks those against brute force). Returns
+// the number of problems found (0: the list is right).
+extern "C" int tricell_test_check_list(
+    const double* positions, std::size_t n, const double* box_columns, const int* periodic,
+    double cutoff, int half, int sorted, int backend, const double* radii,
+    const std::int32_t* species, const std::int32_t* table_pairs, const double* table_cutoffs,
+    std::size_t table_count, std::size_t npairs, const std::int32_t* i, const std::int32_t* j,
+    const std::int32_t* shifts, const double* distances, const double* vectors) {
     int problems = 0;
     Eigen::Matrix3d rows;
     for (int k = 0; k < 3; ++k) {
@@ -55,6 +57,17 @@ extern "C" int tricell_test_check_list(const double* positions, std::size_t n,
     options.half = half == 1;
     options.sorted = sorted == 1;
     options.quantities.vectors = true;
+    options.backend = static_cast<SearchBackend>(backend);
+    if (radii != nullptr) {
+        options.radii.assign(radii, radii + n);
+    }
+    if (species != nullptr) {
+        options.species.assign(species, species + n);
+        for (std::size_t k = 0; k < table_count; ++k) {
+            options.species_cutoffs.push_back(
+                SpeciesCutoff{table_pairs[2 * k], table_pairs[2 * k + 1], table_cutoffs[k]});
+        }
+    }
     const NeighborList cxx = compute_neighbors(box, x, options);
     if (cxx.size() != npairs) {
         std::fprintf(stderr, "  oracle: %zu pairs from Fortran, %zu from C++\n", npairs,
@@ -76,6 +89,9 @@ extern "C" int tricell_test_check_list(const double* positions, std::size_t n,
         }
     }
 
+    if (options.variable_cutoff()) {
+        return problems;
+    }
     PairMap expected = brute_force_pairs(box, x, cutoff);
     if (half == 1) {
         expected = canonical_half(expected);
