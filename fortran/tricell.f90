@@ -13,7 +13,8 @@ module tricell
     implicit none
     private
 
-    public :: tricell_neighbor_list, tricell_errmsg, tricell_version
+    public :: tricell_pair_arrays, tricell_neighbor_list, tricell_verlet_list
+    public :: tricell_errmsg, tricell_version
 
     integer, parameter, public :: TRICELL_OK = 0
     integer, parameter, public :: TRICELL_ERROR_INVALID_ARGUMENT = 1
@@ -42,6 +43,11 @@ module tricell
         integer(c_size_t) :: species_cutoff_count
     end type
 
+    type, bind(c) :: c_verlet_options
+        type(c_neighbor_options) :: neighbors
+        real(c_double) :: skin
+    end type
+
     type, bind(c) :: c_species_cutoff
         integer(c_int32_t) :: a, b
         real(c_double) :: cutoff
@@ -54,13 +60,9 @@ module tricell
         type(c_ptr) :: offsets
     end type
 
-    !> A neighbour list: options from the constructor, buffers kept between compute() calls.
-    !> Call destroy() when done (the type has no finalizer, so copies never free twice).
-    type :: tricell_neighbor_list
-        type(c_neighbor_options), private :: options
-        type(c_species_cutoff), pointer, contiguous, private :: table(:) => null()
-        type(c_ptr), private :: search = c_null_ptr
-        type(c_ptr), private :: list = c_null_ptr
+    !> The pairs of the last call: pointers into the C list's arrays, valid until the next call
+    !> or destroy(). A quantity not asked for is a null pointer.
+    type :: tricell_pair_arrays
         integer :: npairs = 0
         integer(c_int32_t), pointer, contiguous :: i(:) => null()
         integer(c_int32_t), pointer, contiguous :: j(:) => null()
@@ -68,10 +70,33 @@ module tricell
         real(c_double), pointer, contiguous :: distances(:) => null()
         real(c_double), pointer, contiguous :: vectors(:, :) => null()
         integer(c_size_t), pointer, contiguous :: offsets(:) => null()
+    end type
+
+    !> A neighbour list: options from the constructor, buffers kept between compute() calls.
+    !> Call destroy() when done (the type has no finalizer, so copies never free twice).
+    type, extends(tricell_pair_arrays) :: tricell_neighbor_list
+        type(c_neighbor_options), private :: options
+        type(c_species_cutoff), pointer, contiguous, private :: table(:) => null()
+        type(c_ptr), private :: search = c_null_ptr
+        type(c_ptr), private :: list = c_null_ptr
     contains
         procedure :: compute
         procedure :: destroy
     end type
+
+    !> A Verlet list: candidates at cutoff + skin, refreshed by every update(), rebuilt only
+    !> when atoms moved too far. Pairs grouped by i (offsets(0:N) always set). Call destroy().
+    type, extends(tricell_pair_arrays) :: tricell_verlet_list
+        type(c_verlet_options), private :: options
+        type(c_ptr), private :: verlet = c_null_ptr
+    contains
+        procedure :: update => verlet_update
+        procedure :: destroy => verlet_destroy
+    end type
+
+    interface tricell_verlet_list
+        module procedure new_verlet_list
+    end interface
 
     interface tricell_neighbor_list
         module procedure new_neighbor_list
@@ -131,6 +156,37 @@ module tricell
             type(c_ptr), value :: list
             type(c_pairs), intent(out) :: pairs
             integer(c_int) :: c_neighbor_list_pairs
+        end function
+        function c_verlet_options_init(options) bind(c, name="tricell_verlet_options_init")
+            import :: c_int, c_verlet_options
+            type(c_verlet_options), intent(out) :: options
+            integer(c_int) :: c_verlet_options_init
+        end function
+        function c_verlet_create(options, verlet) bind(c, name="tricell_verlet_create")
+            import :: c_int, c_ptr, c_verlet_options
+            type(c_verlet_options), intent(in) :: options
+            type(c_ptr), intent(out) :: verlet
+            integer(c_int) :: c_verlet_create
+        end function
+        subroutine c_verlet_destroy(verlet) bind(c, name="tricell_verlet_destroy")
+            import :: c_ptr
+            type(c_ptr), value :: verlet
+        end subroutine
+        function c_verlet_update(verlet, box, positions, n, rebuilt) &
+                bind(c, name="tricell_verlet_update")
+            import :: c_int, c_ptr, c_double, c_size_t, c_box
+            type(c_ptr), value :: verlet
+            type(c_box), intent(in) :: box
+            real(c_double), intent(in) :: positions(*)
+            integer(c_size_t), value :: n
+            integer(c_int), intent(out) :: rebuilt
+            integer(c_int) :: c_verlet_update
+        end function
+        function c_verlet_pairs(verlet, pairs) bind(c, name="tricell_verlet_pairs")
+            import :: c_int, c_ptr, c_pairs
+            type(c_ptr), value :: verlet
+            type(c_pairs), intent(out) :: pairs
+            integer(c_int) :: c_verlet_pairs
         end function
         function c_strlen(s) bind(c, name="strlen")
             import :: c_ptr, c_size_t
@@ -263,6 +319,73 @@ contains
         self%list = c_null_ptr
     end subroutine
 
+    !> A Verlet list for pairs closer than `cutoff` after every update(), candidates built at
+    !> cutoff + skin. Optional: half, shifts, distances, vectors, threads, backend as for
+    !> tricell_neighbor_list. Options are checked by the first update().
+    function new_verlet_list(cutoff, skin, half, shifts, distances, vectors, threads, backend) &
+            result(self)
+        real(c_double), intent(in) :: cutoff, skin
+        logical, intent(in), optional :: half, shifts, distances, vectors
+        integer, intent(in), optional :: threads, backend
+        type(tricell_verlet_list) :: self
+        integer(c_int) :: status
+
+        status = c_verlet_options_init(self%options)
+        self%options%neighbors%cutoff = cutoff
+        self%options%skin = skin
+        if (present(half)) self%options%neighbors%half = merge(1, 0, half)
+        if (present(shifts)) self%options%neighbors%shifts = merge(1, 0, shifts)
+        if (present(distances)) self%options%neighbors%distances = merge(1, 0, distances)
+        if (present(vectors)) self%options%neighbors%vectors = merge(1, 0, vectors)
+        if (present(threads)) self%options%neighbors%threads = int(threads, c_int)
+        if (present(backend)) self%options%neighbors%backend = int(backend, c_int)
+    end function
+
+    !> The pairs within the cutoff for positions(3, N) in box(3, 3) (vectors as columns) with
+    !> periodic(3); rebuilt is .true. when the candidates were rebuilt. On failure (status not
+    !> TRICELL_OK, see tricell_errmsg()) the list is empty and the next update rebuilds.
+    subroutine verlet_update(self, positions, box, periodic, rebuilt, status)
+        class(tricell_verlet_list), intent(inout) :: self
+        real(c_double), intent(in), contiguous :: positions(:, :)
+        real(c_double), intent(in) :: box(3, 3)
+        logical, intent(in) :: periodic(3)
+        logical, intent(out) :: rebuilt
+        integer, intent(out) :: status
+        type(c_box) :: cbox
+        type(c_pairs) :: pairs
+        integer(c_int) :: c_rebuilt
+
+        call clear_results(self)
+        rebuilt = .false.
+        fortran_error = ''
+        if (size(positions, 1) /= 3) then
+            fortran_error = 'positions must have 3 rows, positions(3, N) (got ' &
+                            // itoa(size(positions, 1)) // ')'
+            status = TRICELL_ERROR_INVALID_ARGUMENT
+            return
+        end if
+        if (.not. c_associated(self%verlet)) then
+            status = c_verlet_create(self%options, self%verlet)
+            if (status /= TRICELL_OK) return
+        end if
+        status = c_box_from_rows(box, merge(1, 0, periodic), cbox)
+        if (status /= TRICELL_OK) return
+        status = c_verlet_update(self%verlet, cbox, positions, int(size(positions, 2), c_size_t), &
+                                 c_rebuilt)
+        if (status /= TRICELL_OK) return
+        rebuilt = c_rebuilt == 1
+        status = c_verlet_pairs(self%verlet, pairs)
+        if (status /= TRICELL_OK) return
+        call view_pairs(self, pairs)
+    end subroutine
+
+    subroutine verlet_destroy(self)
+        class(tricell_verlet_list), intent(inout) :: self
+        call clear_results(self)
+        call c_verlet_destroy(self%verlet)
+        self%verlet = c_null_ptr
+    end subroutine
+
     !> The message of this thread's last failed call ('' after a successful one).
     function tricell_errmsg() result(message)
         character(len=:), allocatable :: message
@@ -282,13 +405,13 @@ contains
     end function
 
     subroutine clear_results(self)
-        type(tricell_neighbor_list), intent(inout) :: self
+        class(tricell_pair_arrays), intent(inout) :: self
         self%npairs = 0
         nullify (self%i, self%j, self%shifts, self%distances, self%vectors, self%offsets)
     end subroutine
 
     subroutine view_pairs(self, pairs)
-        type(tricell_neighbor_list), intent(inout) :: self
+        class(tricell_pair_arrays), intent(inout) :: self
         type(c_pairs), intent(in) :: pairs
         integer(c_size_t), pointer, contiguous :: offsets(:)
         integer :: n

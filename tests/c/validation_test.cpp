@@ -342,6 +342,17 @@ TEST(CApiValidation, Neighbors_EveryArgumentLeavesTheListEmpty) {
         check(call_with(o, xyz(two_atoms), 2), TRICELL_ERROR_INVALID_ARGUMENT,
               "options.species_cutoffs is NULL but options.species_cutoff_count is 3");
     }
+    // More atoms than the C++ API supports: refused from the count alone, nothing is read.
+    {
+        const std::size_t huge = std::size_t(1) << 31;
+        tricell::NeighborOptions c;
+        c.cutoff = 1.5;
+        const std::string message = cxx_message([&] {
+            tricell::compute_neighbors(cxx_box, tricell::PointsView(xyz(two_atoms), huge), c);
+        });
+        ASSERT_NE(message.find("positions are supported"), std::string::npos) << message;
+        check(call_with(good, xyz(two_atoms), huge), TRICELL_ERROR_INVALID_ARGUMENT, message);
+    }
     // Positions: NULL for N > 0, non-finite, too far away.
     check(call_with(good, nullptr, 2), TRICELL_ERROR_INVALID_ARGUMENT,
           "positions: null data for 2 points");

@@ -40,6 +40,7 @@ program neighbors_test
     do seed = 1, cases
         call random_case(seed)
     end do
+    call verlet_trajectories(max(cases / 10, 5))
     call error_paths()
     if (total_pairs < 1000 .or. beyond_box == 0 .or. partial == 0) then
         print '(a)', 'the random cases are too easy'
@@ -164,6 +165,58 @@ contains
         call list%destroy()
     end subroutine
 
+    !> Along random trajectories the Verlet list holds, at every step, exactly the pairs of a
+    !> fresh sorted neighbour list (the same (i, j, S) per atom, any order within an atom).
+    subroutine verlet_trajectories(count)
+        integer, intent(in) :: count
+        type(tricell_verlet_list) :: verlet
+        type(tricell_neighbor_list) :: list
+        real(c_double) :: box(3, 3), x(3, 30), steps(3, 30), cutoff
+        logical :: rebuilt, periodic(3)
+        integer :: system, t, status, k, m, a, rebuilds, updates
+        logical :: found
+
+        rebuilds = 0
+        updates = 0
+        do system = 1, count
+            box = reshape([6d0, 0d0, 0d0, 1.5d0, 5.5d0, 0d0, -1d0, 0.8d0, 7d0], [3, 3])
+            periodic = [.true., mod(system, 2) == 0, .true.]
+            call random_number(x)
+            x = matmul(box, x)
+            cutoff = 2.5d0 + 0.1d0 * system
+            verlet = tricell_verlet_list(cutoff, 0.4d0, half=mod(system, 3) == 0)
+            list = tricell_neighbor_list(cutoff, half=mod(system, 3) == 0, sorted=.true.)
+            do t = 1, 12
+                call random_number(steps)
+                x = x + 0.06d0 * (steps - 0.5d0)
+                call verlet%update(x, box, periodic, rebuilt, status)
+                call expect(status == TRICELL_OK, 'a Verlet update')
+                call list%compute(x, box, periodic, status)
+                call expect(status == TRICELL_OK, 'a neighbour list')
+                if (status /= TRICELL_OK) return
+                updates = updates + 1
+                if (rebuilt) rebuilds = rebuilds + 1
+                call expect(verlet%npairs == list%npairs, 'as many Verlet pairs as neighbours')
+                call expect(associated(verlet%offsets), 'Verlet offsets')
+                do k = 1, verlet%npairs
+                    a = verlet%i(k)
+                    found = .false.
+                    do m = int(list%offsets(a)) + 1, int(list%offsets(a + 1))
+                        if (list%j(m) == verlet%j(k) .and. &
+                            all(list%shifts(:, m) == verlet%shifts(:, k))) found = .true.
+                    end do
+                    if (.not. found) then
+                        call expect(.false., 'a Verlet pair the neighbour list does not have')
+                        exit
+                    end if
+                end do
+            end do
+            call verlet%destroy()
+            call list%destroy()
+        end do
+        call expect(rebuilds < updates .and. rebuilds >= count, 'some updates only refresh')
+    end subroutine
+
     !> D = x_j - x_i + H S with 0-based i, j; d = |D| < cutoff; offsets delimit each atom's pairs.
     integer function check_in_fortran(list, x, box, cutoff, sorted) result(problems)
         type(tricell_neighbor_list), intent(in) :: list
@@ -227,6 +280,8 @@ contains
 
     subroutine error_paths()
         type(tricell_neighbor_list) :: list
+        type(tricell_verlet_list) :: verlet
+        logical :: rebuilt
         real(c_double) :: box(3, 3), x(3, 2), wide(4, 2)
         integer :: status
 
@@ -276,6 +331,19 @@ contains
         call expect(index(tricell_version(), '.') > 0, 'a version MAJOR.MINOR.PATCH')
         call list%destroy()
         call list%destroy() ! twice is harmless
+
+        verlet = tricell_verlet_list(1.5d0, -1d0)
+        call verlet%update(x, box, [.true., .true., .true.], rebuilt, status)
+        call expect(status == TRICELL_ERROR_INVALID_ARGUMENT, 'a negative skin is refused')
+        call expect(tricell_errmsg() == 'skin must be >= 0 (got -1)', 'the C++ skin message')
+        call expect(.not. rebuilt .and. verlet%npairs == 0, 'nothing on failure')
+        call verlet%destroy()
+        verlet = tricell_verlet_list(1.5d0, 0.2d0)
+        call verlet%update(wide, box, [.true., .true., .true.], rebuilt, status)
+        call expect(status == TRICELL_ERROR_INVALID_ARGUMENT, 'Verlet positions(4, N) refused')
+        call verlet%update(x, box, [.true., .true., .true.], rebuilt, status)
+        call expect(status == TRICELL_OK .and. rebuilt .and. verlet%npairs == 2, 'a Verlet list')
+        call verlet%destroy()
     end subroutine
 
 end program
