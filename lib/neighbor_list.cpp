@@ -37,7 +37,10 @@ struct SearchState {
     double estimated_pairs = 0;
     CutoffRule rule;
     AtomTable atoms;
-    std::unique_ptr<Backend> backend; // null when no pair can count (all radii zero, ...)
+    // The backend of the last build, null when no pair can count (all radii zero, ...). Each
+    // kind's object is kept between builds so that its buffers are reused.
+    Backend* backend = nullptr;
+    std::unique_ptr<Backend> pool[5];
 };
 
 } // namespace detail
@@ -293,7 +296,7 @@ void NeighborSearch::build(const Box& caller_box, PointsView positions,
         state = std::make_unique<detail::SearchState>();
     }
     detail::SearchState& s = *state;
-    s.backend.reset();
+    s.backend = nullptr;
     s.rule.set(options, n);
     s.options = options;
     const Box box = search_frame(caller_box, options.reduce_cell, s.to_caller);
@@ -354,7 +357,11 @@ void NeighborSearch::build(const Box& caller_box, PointsView positions,
     if (kind == SearchBackend::automatic) {
         kind = automatic_backend(box, lower, upper, s.search_radius, options, n);
     }
-    s.backend = detail::make_backend(kind);
+    std::unique_ptr<detail::Backend>& pooled = s.pool[static_cast<int>(kind)];
+    if (!pooled) {
+        pooled = detail::make_backend(kind);
+    }
+    s.backend = pooled.get();
     std::vector<std::uint32_t> order;
     s.backend->bin(detail::BinningInput{box, fractional, lower, upper, s.search_radius, options},
                    order);
