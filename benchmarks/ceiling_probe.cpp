@@ -18,7 +18,8 @@
 // fraction of it says how much of the work is the work itself.
 //
 // usage: ceiling_probe FILE --cutoff R [--half] [--repeat K]
-// prints "key value" lines: pairs, candidates, store_s, test_s, ceiling_s (medians of K)
+// prints "key value" lines: pairs, candidates, store_s, test_s, ceiling_s (medians of K), and
+// store_streaming_s (the same records with non-temporal stores, for comparison; 0 without AVX2)
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -110,6 +111,40 @@ template <class Body> double median_time(Body&& body, int repeat) {
     return samples[samples.size() / 2];
 }
 
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#include <immintrin.h>
+#define TRICELL_PROBE_STREAMING 1
+// The same records written with non-temporal (streaming) stores, 8 pairs per step, into
+// 32-byte aligned columns: no read-for-ownership of the destination lines. Not a ceiling the
+// library is held to (it needs whole 64-byte lines per column), but what storing could cost if
+// it streamed; benchmarks/compare reports it beside store_s for the lead.
+__attribute__((target("avx2"))) void store_streaming(std::uint32_t* pi, std::uint32_t* pj,
+                                                     std::int32_t* ps, double* pd,
+                                                     std::size_t pairs) {
+    const __m256i lanes = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+    for (std::size_t k = 0; k + 8 <= pairs; k += 8) {
+        const __m256i kk = _mm256_add_epi32(_mm256_set1_epi32(int(k)), lanes);
+        _mm256_stream_si256(reinterpret_cast<__m256i*>(pi + k), _mm256_srli_epi32(kk, 5));
+        _mm256_stream_si256(reinterpret_cast<__m256i*>(pj + k),
+                            _mm256_mullo_epi32(kk, _mm256_set1_epi32(7)));
+        for (int w = 0; w < 3; ++w) {
+            _mm256_stream_si256(reinterpret_cast<__m256i*>(ps + 3 * k + 8 * std::size_t(w)),
+                                _mm256_and_si256(kk, _mm256_set1_epi32(1 << w)));
+        }
+        const __m256d d =
+            _mm256_mul_pd(_mm256_cvtepi32_pd(_mm256_castsi256_si128(kk)), _mm256_set1_pd(1e-9));
+        _mm256_stream_pd(pd + k, d);
+        _mm256_stream_pd(pd + k + 4, d);
+    }
+    _mm_sfence();
+}
+
+template <class T> T* aligned_array(std::size_t count) {
+    const std::size_t bytes = (count * sizeof(T) + 63) / 64 * 64;
+    return static_cast<T*>(std::aligned_alloc(64, bytes == 0 ? 64 : bytes));
+}
+#endif
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -176,6 +211,22 @@ int main(int argc, char** argv) {
         },
         repeat);
 
+    double streaming_s = 0;
+#ifdef TRICELL_PROBE_STREAMING
+    __builtin_cpu_init();
+    if (__builtin_cpu_supports("avx2")) {
+        std::uint32_t* si = aligned_array<std::uint32_t>(pairs);
+        std::uint32_t* sj = aligned_array<std::uint32_t>(pairs);
+        std::int32_t* sss = aligned_array<std::int32_t>(3 * pairs);
+        double* sd = aligned_array<double>(pairs);
+        streaming_s = median_time([&] { store_streaming(si, sj, sss, sd, pairs); }, repeat);
+        std::free(si);
+        std::free(sj);
+        std::free(sss);
+        std::free(sd);
+    }
+#endif
+
     // Test: C candidates in blocks of 64 points from 16 blocks (24 KB, L1-resident), points in a
     // cube of side 1 around the query, radius chosen so the hit fraction is about P / C.
     constexpr std::uint32_t block = tricell::detail::kernel_block;
@@ -215,5 +266,6 @@ int main(int argc, char** argv) {
     std::printf("store_s %.6g\n", store_s);
     std::printf("test_s %.6g\n", test_s);
     std::printf("ceiling_s %.6g\n", store_s + test_s);
+    std::printf("store_streaming_s %.6g\n", streaming_s);
     return 0;
 }
