@@ -84,40 +84,45 @@ void DirectSearch::run(const tricell::Box& box, tricell::PointsView positions, d
     for (int k = 0; k < 3; ++k) {
         m[k] = box.periodic(k) ? int(std::ceil(reach / box.perpendicular_widths()[k])) : 0;
     }
+    // Images with |T| < reach, S = 0 first, then S < 0, then S > 0 (lexicographically), so that a
+    // half list scans [positive_begin, end) for a == b. Per row (sa, sb) the sc with
+    // |A + sc c| < reach form an interval, from the roots of a quadratic (then checked exactly).
     tx.assign(1, 0.0);
     ty.assign(1, 0.0);
     tz.assign(1, 0.0);
     s.assign(3, 0);
-    auto add = [&](int sa, int sb, int sc) {
-        const Eigen::Vector3d t = h.col(0) * sa + h.col(1) * sb + h.col(2) * sc; // as the grid
-        if (t.norm() < reach) {
-            tx.push_back(t.x());
-            ty.push_back(t.y());
-            tz.push_back(t.z());
-            s.insert(s.end(), {sa, sb, sc});
-        }
-    };
-    // Negative half first, then the positive half (S > 0 lexicographically), so that a half list
-    // scans [positive_begin, end) for a == b.
-    for (int sa = -m[0]; sa <= m[0]; ++sa) {
-        for (int sb = -m[1]; sb <= m[1]; ++sb) {
-            for (int sc = -m[2]; sc <= m[2]; ++sc) {
-                const bool positive = sa > 0 || (sa == 0 && (sb > 0 || (sb == 0 && sc > 0)));
-                if (!positive && !(sa == 0 && sb == 0 && sc == 0)) {
-                    add(sa, sb, sc);
+    const Eigen::Vector3d c = h.col(2);
+    const double cc = c.squaredNorm();
+    for (int pass = 0; pass < 2; ++pass) { // pass 0: S < 0, pass 1: S > 0
+        for (int sa = -m[0]; sa <= m[0]; ++sa) {
+            for (int sb = -m[1]; sb <= m[1]; ++sb) {
+                const Eigen::Vector3d row = h.col(0) * sa + h.col(1) * sb;
+                const double ac = row.dot(c);
+                const double disc = ac * ac - cc * (row.squaredNorm() - reach * reach);
+                if (disc < 0) {
+                    continue;
+                }
+                const double root = std::sqrt(disc);
+                const int sc_lo = std::max(-m[2], int(std::floor((-ac - root) / cc)));
+                const int sc_hi = std::min(m[2], int(std::ceil((-ac + root) / cc)));
+                for (int sc = sc_lo; sc <= sc_hi; ++sc) {
+                    const bool pos = sa > 0 || (sa == 0 && (sb > 0 || (sb == 0 && sc > 0)));
+                    const bool zero = sa == 0 && sb == 0 && sc == 0;
+                    if (zero || pos != (pass == 1)) {
+                        continue;
+                    }
+                    const Eigen::Vector3d t = h.col(0) * sa + h.col(1) * sb + h.col(2) * sc;
+                    if (t.norm() < reach) { // the grid's shift vector, term for term
+                        tx.push_back(t.x());
+                        ty.push_back(t.y());
+                        tz.push_back(t.z());
+                        s.insert(s.end(), {sa, sb, sc});
+                    }
                 }
             }
         }
-    }
-    positive_begin = tx.size();
-    for (int sa = 0; sa <= m[0]; ++sa) {
-        for (int sb = -m[1]; sb <= m[1]; ++sb) {
-            for (int sc = -m[2]; sc <= m[2]; ++sc) {
-                const bool positive = sa > 0 || (sa == 0 && (sb > 0 || (sb == 0 && sc > 0)));
-                if (positive) {
-                    add(sa, sb, sc);
-                }
-            }
+        if (pass == 0) {
+            positive_begin = tx.size();
         }
     }
 
