@@ -49,6 +49,14 @@ struct BatchColumns {
 struct BatchWorker; // one thread's search object and scratch list (lib/batch.cpp)
 } // namespace detail
 
+class BatchList;
+
+/// Computes the neighbour list of each of `count` structures with `options` (validated once;
+/// options.threads threads across structures, 0 = all hardware threads) into `out`. On error
+/// `out` is left empty and the message names the structure.
+TRICELL_API void compute_neighbors_batch(const BatchStructure* structures, std::size_t count,
+                                         const NeighborOptions& options, BatchList& out);
+
 /// The lists of a batch, struct-of-arrays. Reuse one object across calls to keep its buffers.
 class TRICELL_API BatchList {
   public:
@@ -96,11 +104,7 @@ class TRICELL_API BatchList {
     std::vector<detail::BatchWorker> workers_;
 };
 
-/// Computes the neighbour list of each of `count` structures with `options` (validated once;
-/// options.threads threads across structures, 0 = all hardware threads) into `out`. On error
-/// `out` is left empty and the message names the structure.
-TRICELL_API void compute_neighbors_batch(const BatchStructure* structures, std::size_t count,
-                                         const NeighborOptions& options, BatchList& out);
+/// The same for a vector of structures.
 TRICELL_API void compute_neighbors_batch(const std::vector<BatchStructure>& structures,
                                          const NeighborOptions& options, BatchList& out);
 
