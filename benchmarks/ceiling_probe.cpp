@@ -9,9 +9,11 @@
 //   (a reused list), one sequential pass per column, P = the workload's pair count;
 // - test: the library's own run-time selected distance kernel (AVX2 with lane compaction where
 //   the processor has it) over C candidates in full 64-candidate blocks held in L1, C = the
-//   candidates the workload's stencil generates (cells x stencil offsets x atoms, counted from
-//   the public CellGrid / Stencil / SortedCellList of a NeighborSearch built with the same
-//   options). The block points are placed so that the hit fraction matches P / C.
+//   candidates the workload's stencil generates (cells x stencil offsets x atoms, from the
+//   dense backend's grid and exactly pruned stencil for the same search radius, rebuilt from
+//   the public CellGrid / Stencil / SortedCellList in the caller's frame, so a strongly skewed
+//   cell that the search reduces is counted unreduced). The block points are placed so that
+//   the hit fraction matches P / C.
 //
 // ceiling_s = store_s + test_s is the time of a search with no overhead at all: no binning, no
 // loop control between ranges, no image bookkeeping, no call overhead. A workload's time as a
@@ -31,20 +33,48 @@
 #include <string>
 #include <vector>
 
+#include <tricell/cell_list.hpp>
 #include <tricell/detail/distance_kernel.hpp>
+#include <tricell/grid.hpp>
 #include <tricell/io/structure.hpp>
 #include <tricell/neighbor_list.hpp>
+#include <tricell/stencil.hpp>
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// Candidate pairs the stencil of a built search generates: for every cell and every stencil
-// offset, (atoms in the cell) x (atoms in the cell it reaches); the zero offset pairs a cell's
-// atoms with each other only (n (n - 1) ordered pairs, half of them for a half list).
-double count_candidates(const tricell::NeighborSearch& search, bool half) {
-    const tricell::CellGrid& grid = search.grid();
-    const tricell::SortedCellList& cells = search.sorted_cells();
+// Candidate pairs the stencil generates: the grid and stencil the dense backend builds for the
+// same search (cells from the same search radius and cells per cutoff, at most 4 N + 64; the
+// stencil pruned exactly), rebuilt here from the public CellGrid / Stencil / SortedCellList,
+// in the caller's frame. For every cell and every stencil offset, (atoms in the cell) x (atoms
+// in the cell it reaches); the zero offset pairs a cell's atoms with each other only
+// (n (n - 1) ordered pairs, half of them for a half list).
+double count_candidates(const tricell::Box& box, const std::vector<Eigen::Vector3d>& positions,
+                        double search_radius, const tricell::NeighborOptions& options) {
+    const std::size_t atoms = positions.size();
+    std::vector<Eigen::Vector3d> fractional(atoms);
+    Eigen::Vector3d lower = Eigen::Vector3d::Zero(), upper = Eigen::Vector3d::Zero();
+    for (std::size_t i = 0; i < atoms; ++i) {
+        fractional[i] = box.wrap(box.to_fractional(tricell::Cartesian(positions[i]))).wrapped;
+        lower = i == 0 ? fractional[i] : Eigen::Vector3d(lower.cwiseMin(fractional[i]));
+        upper = i == 0 ? fractional[i] : Eigen::Vector3d(upper.cwiseMax(fractional[i]));
+    }
+    tricell::GridOptions grid_options;
+    grid_options.search_radius = search_radius;
+    grid_options.cells_per_cutoff = options.cells_per_cutoff;
+    grid_options.max_cells = 4 * atoms + 64;
+    const tricell::CellGrid grid(box, grid_options, lower, upper);
+    std::vector<std::uint32_t> cell_of(atoms);
+    for (std::size_t i = 0; i < atoms; ++i) {
+        cell_of[i] = std::uint32_t(grid.cell_of(fractional[i]));
+    }
+    tricell::SortedCellList cells;
+    cells.build(cell_of, grid.cell_count());
+    const tricell::Stencil stencil = options.half
+                                         ? tricell::Stencil::half(grid, box, search_radius, true)
+                                         : tricell::Stencil::full(grid, box, search_radius, true);
+    const bool half = options.half;
     const std::array<int, 3>& n = grid.dims();
     double total = 0;
     for (int ca = 0; ca < n[0]; ++ca) {
@@ -55,7 +85,7 @@ double count_candidates(const tricell::NeighborSearch& search, bool half) {
                 if (n1 == 0) {
                     continue;
                 }
-                for (const tricell::CellOffset& d : search.stencil().offsets()) {
+                for (const tricell::CellOffset& d : stencil.offsets()) {
                     const int t[3] = {ca + d[0], cb + d[1], cc + d[2]};
                     int c2[3];
                     bool inside = true;
@@ -182,7 +212,8 @@ int main(int argc, char** argv) {
         const tricell::io::Structure structure = tricell::io::read_structure(file);
         search.build(structure.box, structure.positions, options);
         search.compute(list);
-        candidates = count_candidates(search, half);
+        candidates = count_candidates(structure.box, structure.positions,
+                                      search.info().search_radius, options);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "ceiling_probe: %s\n", e.what());
         return 1;
