@@ -49,6 +49,10 @@ std::vector<std::size_t> split_work(const std::vector<double>& work, std::size_t
     return bounds;
 }
 
+bool choose_direct(std::size_t atoms, double min_width, double radius) {
+    return atoms <= 12 && (!std::isfinite(min_width) || min_width < 2 * radius);
+}
+
 SearchBackend choose_grid_backend(double full_resolution_cells, double max_cells) {
     return full_resolution_cells <= max_cells ? SearchBackend::dense : SearchBackend::hash;
 }

@@ -29,8 +29,8 @@ constexpr double max_cells_per_axis = double(1 << 20);
 // Cells that fit along an axis of real thickness `thickness` with target size h, at most
 // `limit` (so that cell counts stay representable).
 int cells_along(double thickness, double h, double limit) {
-    const double n = std::floor(thickness / h);
-    return n < 1 ? 1 : static_cast<int>(std::min({n, limit, max_cells_per_axis}));
+    const double n = std::floor(thickness / h); // NaN for 0 / 0 (a flat axis, h underflowed)
+    return !(n >= 1) ? 1 : static_cast<int>(std::min({n, limit, max_cells_per_axis}));
 }
 
 } // namespace

@@ -40,7 +40,7 @@ struct SearchState {
     // The backend of the last build, null when no pair can count (all radii zero, ...). Each
     // kind's object is kept between builds so that its buffers are reused.
     Backend* backend = nullptr;
-    std::unique_ptr<Backend> pool[5];
+    std::unique_ptr<Backend> pool[6];
 };
 
 } // namespace detail
@@ -110,6 +110,8 @@ const char* backend_name(SearchBackend backend) {
         return "hash";
     case SearchBackend::octree:
         return "octree";
+    case SearchBackend::direct:
+        return "direct";
     }
     return "unknown";
 }
@@ -123,7 +125,7 @@ SearchBackend parse_backend(const std::string& name) {
         }
     }
     detail::fail<InvalidArgument>("unknown search backend '", name,
-                                  "' (expected auto, dense, linked, hash or octree)");
+                                  "' (expected auto, dense, linked, hash, octree or direct)");
 }
 
 void NeighborOptions::validate() const {
@@ -184,9 +186,9 @@ void NeighborOptions::validate() const {
     }
     if (backend != SearchBackend::automatic && backend != SearchBackend::dense &&
         backend != SearchBackend::linked && backend != SearchBackend::hash &&
-        backend != SearchBackend::octree) {
-        detail::fail<InvalidArgument>("backend must be one of auto, dense, linked, hash, octree "
-                                      "(got the value ",
+        backend != SearchBackend::octree && backend != SearchBackend::direct) {
+        detail::fail<InvalidArgument>("backend must be one of auto, dense, linked, hash, octree, "
+                                      "direct (got the value ",
                                       static_cast<int>(backend), ")");
     }
 }
@@ -229,11 +231,21 @@ Box search_frame(const Box& box, bool allow_reduction, Eigen::Matrix3i& transfor
     return candidate;
 }
 
-// The backend for `automatic`: the dense grid when the cells the cutoff asks for fit under its
-// cap, the compact hash otherwise (cost_model.hpp).
+// The backend for `automatic` (cost_model.hpp): direct enumeration for a few atoms in a cell
+// narrower than the cutoff, else the dense grid when the cells the cutoff asks for fit under its
+// cap, the compact hash otherwise.
 SearchBackend automatic_backend(const Box& box, const Eigen::Vector3d& lower,
                                 const Eigen::Vector3d& upper, double search_radius,
                                 const NeighborOptions& options, std::size_t n) {
+    double min_width = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < 3; ++k) {
+        if (box.periodic(k)) {
+            min_width = std::min(min_width, box.perpendicular_widths()[k]);
+        }
+    }
+    if (choose_direct(n, min_width, search_radius)) {
+        return SearchBackend::direct;
+    }
     const double h = search_radius / options.cells_per_cutoff;
     double cells = 1;
     for (int k = 0; k < 3; ++k) {
@@ -251,6 +263,7 @@ std::unique_ptr<Backend> make_dense_backend();
 std::unique_ptr<Backend> make_linked_backend();
 std::unique_ptr<Backend> make_hash_backend();
 std::unique_ptr<Backend> make_octree_backend();
+std::unique_ptr<Backend> make_direct_backend();
 
 std::unique_ptr<Backend> make_backend(SearchBackend kind) {
     switch (kind) {
@@ -260,6 +273,8 @@ std::unique_ptr<Backend> make_backend(SearchBackend kind) {
         return make_hash_backend();
     case SearchBackend::octree:
         return make_octree_backend();
+    case SearchBackend::direct:
+        return make_direct_backend();
     default:
         return make_dense_backend();
     }

@@ -22,6 +22,16 @@
 //     c_test t g^3  >  c_test t + c_lookup K / max(1, rho h^3),
 // which for any real clustering (g^3 >= 2) holds by a wide margin; choose_grid_backend() takes
 // the hash as soon as the cap would bite (C_full > cap).
+//
+// Direct image enumeration for tiny cells. When a cell is narrower than the cutoff, a grid has one
+// cell per axis and a stencil of hundreds of offsets, each its own image, and every (image, atom)
+// becomes a separate range of N atoms: the grid pays its per-range overhead and the stencil's
+// construction hundreds of times for a few pairs. The direct backend tests all N^2 pairs through
+// every image that can hold one, one pair at a time. Counted with callgrind (instructions per
+// call, issue 13): 1 and 2 atoms at rc 8-10, about 10x fewer than the dense grid; 8 atoms at
+// rc 10, 1.5x fewer; 8 atoms at rc 5, 1.2x fewer; 64 atoms, 3x more. choose_direct() takes it for
+// at most 12 atoms when the cutoff reaches past half the narrowest periodic width (or nothing is
+// periodic), where N^2 x images stays below the grid's range scans.
 #pragma once
 
 #include <cstddef>
@@ -74,6 +84,10 @@ TRICELL_API double expected_pairs(double atoms, double volume, double sphere);
 /// Splits units 0..W.size()-1 into at most `parts` contiguous chunks of about equal total work.
 /// Returns the chunk boundaries: bounds[0] = 0, bounds.back() = W.size().
 TRICELL_API std::vector<std::size_t> split_work(const std::vector<double>& work, std::size_t parts);
+
+/// Direct enumeration (see above) for `atoms` atoms, narrowest periodic width `min_width`
+/// (infinity when no axis is periodic) and search radius `radius`.
+TRICELL_API bool choose_direct(std::size_t atoms, double min_width, double radius);
 
 /// Dense or hash for a grid search: dense when the full-resolution cell count fits the cap.
 TRICELL_API SearchBackend choose_grid_backend(double full_resolution_cells, double max_cells);

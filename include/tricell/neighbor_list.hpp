@@ -49,9 +49,10 @@ enum class SearchBackend {
     linked,    ///< the same grid as head/next chains (no reordering of the atoms)
     hash,      ///< compact hashing: only non-empty cells stored, full resolution, O(N) memory
     octree,    ///< an adaptive octree in fractional space, leaves of at most leaf_size atoms
+    direct,    ///< no grid: every atom pair through every image that can hold a pair (tiny cells)
 };
 
-/// "auto", "dense", "linked", "hash" or "octree".
+/// "auto", "dense", "linked", "hash", "octree" or "direct".
 TRICELL_API const char* backend_name(SearchBackend backend);
 /// The backend of a name backend_name() returns; InvalidArgument naming the text otherwise.
 TRICELL_API SearchBackend parse_backend(const std::string& name);

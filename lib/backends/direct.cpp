@@ -83,9 +83,11 @@ class DirectBackend final : public Backend {
 
     std::size_t unit_count() const override { return atoms_; }
 
-    void unit_occupancy(std::vector<double>& atoms, double& neighbours) const override {
-        atoms.assign(atoms_, 1.0);
-        neighbours = double(atoms_) * double(images_.size());
+    void occupancy(UnitOccupancy& out) const override {
+        // One atom per unit over 1/N of the box (so the pair estimate is the mean density's).
+        out.atoms.assign(atoms_, 1.0);
+        out.volume.assign(atoms_, atoms_ > 0 ? 1.0 / double(atoms_) : 1.0);
+        out.neighbours = double(atoms_) * double(images_.size());
     }
 
     void visit(std::size_t begin, std::size_t end, CandidateScanner& scan) const override {
