@@ -191,4 +191,8 @@ SkinPrediction tune_skin(const SkinCostModel& model) {
     return best;
 }
 
+std::size_t octree_leaf_size(const OctreeCosts& costs) {
+    return std::size_t(std::max(1.0, std::round(costs.leaf_size)));
+}
+
 } // namespace tricell

@@ -136,4 +136,16 @@ TRICELL_API SkinPrediction tune_skin(const SkinCostModel& model, CellSize cell_s
 /// The skin and cell-size rule minimising the cost per step.
 TRICELL_API SkinPrediction tune_skin(const SkinCostModel& model);
 
+// ---- Uniform grid or octree: the two-density model (design note 001) -------------------------
+// (prose and formulas: see octree_section below)
+
+/// Constants of the grid-vs-octree model, nanoseconds on the reference machine (fitted by
+/// benchmarks/backend_bench.cpp).
+struct OctreeCosts {
+    double leaf_size = 8; ///< n_max when NeighborOptions::leaf_size is 0
+};
+
+/// The octree's n_max when NeighborOptions::leaf_size is 0.
+TRICELL_API std::size_t octree_leaf_size(const OctreeCosts& costs = OctreeCosts());
+
 } // namespace tricell
