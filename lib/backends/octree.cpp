@@ -12,18 +12,22 @@
 // (coincident, or beyond the depth limit) stay together in one leaf. Atoms are stored in
 // depth-first leaf order, so every node is one contiguous range of atoms and of leaves.
 //
-// Candidates. For a leaf A, the tree is descended once per image shift S: a node B is kept when
-// the closest approach of the fractional box B + S - A, measured in the triclinic metric
-// (closest_approach_sq, after a cheap lower bound from the perpendicular widths), is below the
-// search radius. The shifts are those for which the root can reach itself (all images within the
-// radius, several when the cutoff exceeds the box; S = 0 on open axes). A full list takes every
-// surviving (A, B, S), with `own` for (A, A, 0). A half list takes each unordered pair once:
-// for S = 0 only leaves B >= A (B == A: b > a), and for S != 0 only S lexicographically positive,
-// with every (A, B) including A == B and a == b (an atom and its own image). The pair (b, a, -S)
-// of (a, b, S) lies in (B, A, -S), whose box is the negated one, so pruning keeps both or neither
-// and this choice loses nothing. Consecutive leaves found with one shift are adjacent in the atom
-// order and are scanned as one range. The work units are the leaves; a leaf's candidates depend
-// on that leaf only, so any split of the units gives the same pairs in the same order.
+// Candidates. A node pair (A, B) through an image shift S is kept when the closest approach of
+// the fractional box B + S - A in the triclinic metric (closest_approach_sq, after a cheap lower
+// bound from the perpendicular widths; a plain sum of squared gaps when the lattice vectors are
+// at right angles) is below the search radius. The tree is descended once per shift for the
+// parent P of a run of sibling leaves, collecting the leaves B that P reaches; each leaf A then
+// keeps those of them its own box reaches (a two-level dual-tree descent: the top of the tree is
+// walked once per parent, not once per leaf). The shifts are those for which the root can reach
+// itself (all images within the radius, several when the cutoff exceeds the box; S = 0 on open
+// axes). A full list takes every surviving (A, B, S), with `own` for (A, A, 0). A half list takes
+// each unordered pair once: for S = 0 only leaves B >= A (B == A: b > a), and for S != 0 only S
+// lexicographically positive, with every (A, B) including A == B and a == b (an atom and its own
+// image). The pair (b, a, -S) of (a, b, S) lies in (B, A, -S), whose box is the negated one, so
+// pruning keeps both or neither and this choice loses nothing. Consecutive leaves found with one
+// shift are adjacent in the atom order and are scanned as one range. The work units are the leaves;
+// a leaf's candidates depend on that leaf only, so any split of the units gives the same pairs in
+// the same order.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -57,6 +61,13 @@ class OctreeBackend final : public Backend {
         for (int k = 0; k < 3; ++k) {
             edge_[k] = h_.col(k).norm();
         }
+        const Eigen::Matrix3d gram = h_.transpose() * h_;
+        // At right angles up to rounding (90 degrees from parameters is cos = 6e-17): the error of
+        // the orthogonal formula is then far below the search radius's margin.
+        auto square = [&](int i, int j) {
+            return std::abs(gram(i, j)) <= 1e-12 * std::sqrt(gram(i, i) * gram(j, j));
+        };
+        orthogonal_ = square(0, 1) && square(0, 2) && square(1, 2);
         radius_ = input.search_radius;
         radius_sq_ = radius_ * radius_;
         half_ = input.options.half;
@@ -74,6 +85,12 @@ class OctreeBackend final : public Backend {
         nodes_[0].begin = 0;
         nodes_[0].end = std::uint32_t(n);
         split(0, 0, input.fractional, order);
+        parent_.assign(nodes_.size(), 0);
+        for (std::uint32_t id = 0; id < nodes_.size(); ++id) {
+            for (std::uint32_t c = 0; c < nodes_[id].children; ++c) {
+                parent_[nodes_[id].first_child + c] = id;
+            }
+        }
         scratch_.clear();
         scratch_.shrink_to_fit();
         choose_shifts(input.frame.periodicity());
@@ -93,7 +110,8 @@ class OctreeBackend final : public Backend {
         for (std::size_t k = 0; k < samples; ++k) {
             const std::size_t l = k * leaves_.size() / samples;
             for (const std::array<int, 3>& s : shifts_) {
-                descend(l, s, [&](std::uint32_t, std::uint32_t) { total += 1; });
+                descend(nodes_[leaves_[l]], std::uint32_t(l), s,
+                        [&](std::uint32_t) { total += 1; });
             }
         }
         neighbours = samples > 0 ? total / double(samples) : 0;
@@ -105,31 +123,49 @@ class OctreeBackend final : public Backend {
         for (const std::array<int, 3>& s : shifts_) {
             images.push_back(scan.shift(s[0], s[1], s[2]));
         }
+        // The candidates (shift, leaf) of the leaf's parent, shared by its sibling leaves, each
+        // of which keeps those its own box reaches.
+        std::vector<std::pair<std::uint32_t, std::uint32_t>> group;
+        std::uint32_t group_node = std::uint32_t(-1);
         for (std::size_t l = begin; l < end; ++l) {
-            const Node& a = nodes_[leaves_[l]];
-            for (std::size_t k = 0; k < shifts_.size(); ++k) {
-                const bool zero = is_zero(shifts_[k]);
-                // A run of consecutive candidate leaves [first, last] through this shift.
-                std::uint32_t first = 0, last = 0;
-                bool run = false;
-                auto flush = [&] {
-                    if (run) {
-                        const bool own = zero && first <= l && l <= last;
-                        scan.ranges(a.begin, a.end, nodes_[leaves_[first]].begin,
-                                    nodes_[leaves_[last]].end, images[k], own);
-                    }
-                };
-                descend(l, shifts_[k], [&](std::uint32_t leaf, std::uint32_t) {
-                    if (run && leaf == last + 1) {
-                        last = leaf;
-                        return;
-                    }
-                    flush();
-                    run = true;
-                    first = last = leaf;
-                });
-                flush();
+            const std::uint32_t id = leaves_[l];
+            const Node& a = nodes_[id];
+            if (parent_[id] != group_node) {
+                group_node = parent_[id];
+                group.clear();
+                const Node& p = nodes_[group_node];
+                for (std::uint32_t k = 0; k < shifts_.size(); ++k) {
+                    descend(p, p.first_leaf, shifts_[k],
+                            [&](std::uint32_t leaf) { group.emplace_back(k, leaf); });
+                }
             }
+            // Runs of consecutive leaves [first, last] through one shift k.
+            std::uint32_t k = 0, first = 0, last = 0;
+            bool run = false;
+            auto flush = [&] {
+                if (run) {
+                    const bool own = is_zero(shifts_[k]) && first <= l && l <= last;
+                    scan.ranges(a.begin, a.end, nodes_[leaves_[first]].begin,
+                                nodes_[leaves_[last]].end, images[k], own);
+                }
+            };
+            for (const auto& [shift, leaf] : group) {
+                if (half_ && leaf < l && is_zero(shifts_[shift])) {
+                    continue;
+                }
+                if (!reachable(a, nodes_[leaves_[leaf]], shifts_[shift])) {
+                    continue;
+                }
+                if (run && shift == k && leaf == last + 1) {
+                    last = leaf;
+                    continue;
+                }
+                flush();
+                run = true;
+                k = shift;
+                first = last = leaf;
+            }
+            flush();
         }
     }
 
@@ -154,41 +190,41 @@ class OctreeBackend final : public Backend {
 
     // Can a point of box b (shifted by s) come closer than the radius to a point of box a?
     bool reachable(const Node& a, const Node& b, const std::array<int, 3>& s) const {
-        Eigen::Vector3d lower, upper;
-        bool inside = true;
+        Eigen::Vector3d lower, upper, gap;
         for (int k = 0; k < 3; ++k) {
             lower[k] = b.lo[k] + s[std::size_t(k)] - a.hi[k];
             upper[k] = b.hi[k] + s[std::size_t(k)] - a.lo[k];
             // |u_k| w_k <= |H u|: a gap across one pair of faces is a lower bound.
-            const double gap = lower[k] > 0 ? lower[k] : (upper[k] < 0 ? -upper[k] : 0.0);
-            if (gap * widths_[k] >= radius_) {
+            gap[k] = lower[k] > 0 ? lower[k] : (upper[k] < 0 ? -upper[k] : 0.0);
+            if (gap[k] * widths_[k] >= radius_) {
                 return false;
             }
-            inside = inside && gap == 0;
         }
-        return inside || closest_approach_sq(h_, lower, upper) < radius_sq_;
+        if (orthogonal_) { // the gaps are orthogonal: the closest approach is their sum
+            return gap.cwiseProduct(widths_).squaredNorm() < radius_sq_;
+        }
+        if (gap.isZero()) {
+            return true; // the boxes touch or overlap
+        }
+        return closest_approach_sq(h_, lower, upper) < radius_sq_;
     }
 
-    // Calls found(leaf, node) for every leaf B reachable from leaf l through shift s, in leaf
-    // order (half lists with s = 0: only B >= l).
+    // Calls found(leaf) for every leaf B that box a reaches through shift s, in leaf order (half
+    // lists with s = 0: only leaves B >= later_than).
     template <class Found>
-    void descend(std::size_t l, const std::array<int, 3>& s, Found&& found) const {
-        const Node& a = nodes_[leaves_[l]];
+    void descend(const Node& a, std::uint32_t later_than, const std::array<int, 3>& s,
+                 Found&& found) const {
         const bool only_later = half_ && is_zero(s);
         std::uint32_t stack[8 * depth_limit + 8];
         std::size_t top = 0;
         stack[top++] = 0;
         while (top > 0) {
-            const std::uint32_t id = stack[--top];
-            const Node& b = nodes_[id];
-            if (only_later && b.last_leaf < l) {
-                continue;
-            }
-            if (!reachable(a, b, s)) {
+            const Node& b = nodes_[stack[--top]];
+            if ((only_later && b.last_leaf < later_than) || !reachable(a, b, s)) {
                 continue;
             }
             if (b.children == 0) {
-                found(b.first_leaf, id);
+                found(b.first_leaf);
                 continue;
             }
             for (std::uint32_t c = b.children; c-- > 0;) { // pushed in reverse: popped in order
@@ -308,8 +344,10 @@ class OctreeBackend final : public Backend {
     Eigen::Vector3d edge_ = Eigen::Vector3d::Ones();
     double radius_ = 0, radius_sq_ = 0;
     bool half_ = false;
+    bool orthogonal_ = false; // lattice vectors at right angles
     std::size_t leaf_size_ = 8;
     std::vector<Node> nodes_;
+    std::vector<std::uint32_t> parent_; // of each node (the root's is itself)
     std::vector<std::uint32_t> leaves_; // node of each leaf, in atom order
     std::vector<std::array<int, 3>> shifts_;
     std::vector<std::uint32_t> scratch_;
