@@ -40,8 +40,11 @@ namespace tricell::detail {
 
 namespace {
 
-// Deeper than any useful split (2^-48 of the box); a guard against adversarial inputs.
+// Deeper than any useful split (each level halves one edge: 2^-16 of the box); a guard against
+// adversarial inputs.
 constexpr int depth_limit = 48;
+// Leaves that share one descent of the tree (see visit()).
+constexpr std::uint32_t group_leaves = 8;
 
 struct Node {
     Eigen::Vector3d lo = Eigen::Vector3d::Zero(); // tight fractional box of the node's atoms
@@ -71,8 +74,7 @@ class OctreeBackend final : public Backend {
         radius_ = input.search_radius;
         radius_sq_ = radius_ * radius_;
         half_ = input.options.half;
-        leaf_size_ = input.options.leaf_size != 0 ? input.options.leaf_size
-                                                  : octree_leaf_size(OctreeCosts());
+        leaf_size_ = input.options.leaf_size != 0 ? input.options.leaf_size : octree_leaf_size();
         nodes_.clear();
         leaves_.clear();
         order.resize(n);
@@ -85,11 +87,20 @@ class OctreeBackend final : public Backend {
         nodes_[0].begin = 0;
         nodes_[0].end = std::uint32_t(n);
         split(0, 0, input.fractional, order);
-        parent_.assign(nodes_.size(), 0);
+        std::vector<std::uint32_t> parent(nodes_.size(), 0);
         for (std::uint32_t id = 0; id < nodes_.size(); ++id) {
             for (std::uint32_t c = 0; c < nodes_[id].children; ++c) {
-                parent_[nodes_[id].first_child + c] = id;
+                parent[nodes_[id].first_child + c] = id;
             }
+        }
+        // Each leaf's group: its highest ancestor with at most group_leaves leaves.
+        group_.resize(leaves_.size());
+        for (std::size_t l = 0; l < leaves_.size(); ++l) {
+            std::uint32_t g = parent[leaves_[l]];
+            while (g != 0 && leaf_count(parent[g]) <= group_leaves) {
+                g = parent[g];
+            }
+            group_[l] = g;
         }
         scratch_.clear();
         scratch_.shrink_to_fit();
@@ -123,15 +134,15 @@ class OctreeBackend final : public Backend {
         for (const std::array<int, 3>& s : shifts_) {
             images.push_back(scan.shift(s[0], s[1], s[2]));
         }
-        // The candidates (shift, leaf) of the leaf's parent, shared by its sibling leaves, each
-        // of which keeps those its own box reaches.
+        // The candidates (shift, leaf) of the leaf's group, shared by the group's leaves, each of
+        // which keeps those its own box reaches.
         std::vector<std::pair<std::uint32_t, std::uint32_t>> group;
         std::uint32_t group_node = std::uint32_t(-1);
         for (std::size_t l = begin; l < end; ++l) {
             const std::uint32_t id = leaves_[l];
             const Node& a = nodes_[id];
-            if (parent_[id] != group_node) {
-                group_node = parent_[id];
+            if (group_[l] != group_node) {
+                group_node = group_[l];
                 group.clear();
                 const Node& p = nodes_[group_node];
                 for (std::uint32_t k = 0; k < shifts_.size(); ++k) {
@@ -176,6 +187,10 @@ class OctreeBackend final : public Backend {
     }
 
   private:
+    std::uint32_t leaf_count(std::uint32_t id) const {
+        return nodes_[id].last_leaf - nodes_[id].first_leaf + 1;
+    }
+
     static bool is_zero(const std::array<int, 3>& s) { return s[0] == 0 && s[1] == 0 && s[2] == 0; }
 
     static bool lexicographically_positive(const std::array<int, 3>& s) {
@@ -268,7 +283,7 @@ class OctreeBackend final : public Backend {
         Eigen::Vector3d mid;
         bool cut[3];
         for (int k = 0; k < 3; ++k) {
-            cut[k] = length[k] >= 0.5 * longest;
+            cut[k] = length[k] == longest;
             mid[k] = lo[k] + 0.5 * (hi[k] - lo[k]);
         }
         auto octant = [&](std::uint32_t atom) {
@@ -347,7 +362,7 @@ class OctreeBackend final : public Backend {
     bool orthogonal_ = false; // lattice vectors at right angles
     std::size_t leaf_size_ = 8;
     std::vector<Node> nodes_;
-    std::vector<std::uint32_t> parent_; // of each node (the root's is itself)
+    std::vector<std::uint32_t> group_;  // the node whose candidates each leaf filters
     std::vector<std::uint32_t> leaves_; // node of each leaf, in atom order
     std::vector<std::array<int, 3>> shifts_;
     std::vector<std::uint32_t> scratch_;
