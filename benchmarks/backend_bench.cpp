@@ -262,17 +262,20 @@ tricell::OctreeCosts fit_uniform(bool print) {
 }
 
 // The two-density sweep: measured crossover against the model's f*.
-void run_mixture(const tricell::OctreeCosts& costs, double side, double rho_hi, double rho_lo,
+// The box grows as f shrinks so that every system holds `atoms` atoms, the size of the uniform
+// systems the costs were fitted on (per-atom costs grow with N through the caches).
+void run_mixture(const tricell::OctreeCosts& costs, double atoms, double rho_hi, double rho_lo,
                  const std::vector<double>& fractions) {
-    std::printf("# mixture: periodic cube %g A, a sphere of volume fraction f at %g /A^3, the "
-                "rest at %g /A^3\n",
-                side, rho_hi, rho_lo);
-    std::printf("%8s %8s %7s %10s %10s %10s %10s\n", "f", "atoms", "auto's", "hash ms", "octree ms",
+    std::printf("# mixture: %g atoms in a periodic cube, a sphere of volume fraction f at %g /A^3, "
+                "the rest at %g /A^3\n",
+                atoms, rho_hi, rho_lo);
+    std::printf("%8s %8s %7s %10s %10s %10s %10s\n", "f", "box A", "auto's", "hash ms", "octree ms",
                 "model grid", "model oct");
-    const double volume = side * side * side;
     double measured = -1, previous_f = 0, previous_gap = 0;
     for (std::size_t k = 0; k < fractions.size(); ++k) {
         const double f = fractions[k];
+        const double volume = atoms / (f * rho_hi + (1 - f) * rho_lo);
+        const double side = std::cbrt(volume);
         const System sys = mixture(side, f, rho_hi, rho_lo, 5 + k);
         // The model's f* compares the octree with the hash (what auto uses in these vapours,
         // where the dense grid's cap bites); the grid auto would pick is shown alongside.
@@ -284,7 +287,7 @@ void run_mixture(const tricell::OctreeCosts& costs, double side, double rho_hi, 
                                   n_lo * tricell::grid_cost_per_atom(grid, rho_lo, cutoff, costs));
         const double mo = 1e-6 * (n_hi * tricell::octree_cost_per_atom(rho_hi, cutoff, costs) +
                                   n_lo * tricell::octree_cost_per_atom(rho_lo, cutoff, costs));
-        std::printf("%8.4g %8zu %7s %10.2f %10.2f %10.2f %10.2f\n", f, sys.positions.size(),
+        std::printf("%8.4g %8.1f %7s %10.2f %10.2f %10.2f %10.2f\n", f, side,
                     tricell::backend_name(grid_for(sys)), g, o, mg, mo);
         const double gap = o - g; // < 0: the octree is faster
         if (k > 0 && measured < 0 && previous_gap < 0 && gap >= 0) {
@@ -379,11 +382,12 @@ int main(int argc, char** argv) {
     if (what == "uniform" || what == "mixture" || what == "all") {
         const tricell::OctreeCosts costs = fit_uniform(true);
         if (what != "uniform") {
-            // A liquid droplet in its vapour (density ratio 100), and a gentler contrast.
-            run_mixture(costs, 300, 0.1, 0.001,
-                        {0.001, 0.002, 0.003, 0.004, 0.005, 0.006, 0.007, 0.008, 0.01, 0.012});
-            run_mixture(costs, 300, 0.02, 0.0005,
-                        {0.01, 0.02, 0.03, 0.04, 0.05, 0.06, 0.08, 0.1, 0.12, 0.15, 0.2});
+            // A liquid droplet in its vapour (density ratio 100), and a ratio of 100 at lower
+            // density.
+            run_mixture(costs, 40000, 0.1, 0.001,
+                        {0.002, 0.005, 0.008, 0.01, 0.012, 0.015, 0.02, 0.025, 0.03, 0.04, 0.05});
+            run_mixture(costs, 40000, 0.05, 0.0005,
+                        {0.005, 0.01, 0.015, 0.02, 0.025, 0.03, 0.04, 0.05, 0.07, 0.1});
         }
     }
     if (what == "leaf") {

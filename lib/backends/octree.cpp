@@ -215,11 +215,11 @@ class OctreeBackend final : public Backend {
                 return false;
             }
         }
+        if (gap.isZero()) {
+            return true; // the boxes touch or overlap (even when radius_sq_ underflows to 0)
+        }
         if (orthogonal_) { // the gaps are orthogonal: the closest approach is their sum
             return gap.cwiseProduct(widths_).squaredNorm() < radius_sq_;
-        }
-        if (gap.isZero()) {
-            return true; // the boxes touch or overlap
         }
         return closest_approach_sq(h_, lower, upper) < radius_sq_;
     }
