@@ -4,11 +4,14 @@
 //
 // Build. The root is the atoms' tight bounding box in fractional coordinates (within [0, 1) on
 // periodic axes, the atoms' extent on open ones). A node with more than n_max atoms is split at
-// the midpoint of its box into up to eight children: every axis whose edge |a_k| (u_k - l_k) is at
-// least half the longest edge is halved (a thin slab splits four ways until its cells are round),
-// and each child keeps the tight box of its own atoms. Empty children are not stored, and a
+// the midpoint of its tight box across its longest edge |a_k| (u_k - l_k) (across all the tied
+// longest edges at once, so a cube splits eight ways and every three levels make the eight-way
+// split of a round cell); each child keeps the tight box of its own atoms. Halving one edge at a
+// time keeps a leaf's occupancy within a factor two of n_max (an eight-way split lets it fall to
+// n_max / 8, and the cost of the search with it, in steps of eight as N grows), and a slab splits
+// across its wide edges until its cells are round. Empty children are not stored, and a
 // midpoint always separates the lowest atom from the highest along a split axis, so every split
-// yields at least two children and nodes <= 2 leaves <= 2 N. Atoms that cannot be separated
+// yields at least two children and nodes < 2 leaves <= 2 N. Atoms that cannot be separated
 // (coincident, or beyond the depth limit) stay together in one leaf. Atoms are stored in
 // depth-first leaf order, so every node is one contiguous range of atoms and of leaves.
 //
@@ -16,18 +19,18 @@
 // the fractional box B + S - A in the triclinic metric (closest_approach_sq, after a cheap lower
 // bound from the perpendicular widths; a plain sum of squared gaps when the lattice vectors are
 // at right angles) is below the search radius. The tree is descended once per shift for the
-// parent P of a run of sibling leaves, collecting the leaves B that P reaches; each leaf A then
-// keeps those of them its own box reaches (a two-level dual-tree descent: the top of the tree is
-// walked once per parent, not once per leaf). The shifts are those for which the root can reach
-// itself (all images within the radius, several when the cutoff exceeds the box; S = 0 on open
-// axes). A full list takes every surviving (A, B, S), with `own` for (A, A, 0). A half list takes
-// each unordered pair once: for S = 0 only leaves B >= A (B == A: b > a), and for S != 0 only S
-// lexicographically positive, with every (A, B) including A == B and a == b (an atom and its own
-// image). The pair (b, a, -S) of (a, b, S) lies in (B, A, -S), whose box is the negated one, so
-// pruning keeps both or neither and this choice loses nothing. Consecutive leaves found with one
-// shift are adjacent in the atom order and are scanned as one range. The work units are the leaves;
-// a leaf's candidates depend on that leaf only, so any split of the units gives the same pairs in
-// the same order.
+// highest ancestor P holding at most eight leaves, collecting the leaves B that P reaches; each
+// leaf A of P then keeps those of them its own box reaches (a two-level dual-tree descent: the top
+// of the tree is walked once per group of leaves, not once per leaf). The shifts are those for
+// which the root can reach itself (all images within the radius, several when the cutoff exceeds
+// the box; S = 0 on open axes). A full list takes every surviving (A, B, S), with `own` for (A, A,
+// 0). A half list takes each unordered pair once: for S = 0 only leaves B >= A (B == A: b > a), and
+// for S != 0 only S lexicographically positive, with every (A, B) including A == B and a == b (an
+// atom and its own image). The pair (b, a, -S) of (a, b, S) lies in (B, A, -S), whose box is the
+// negated one, so pruning keeps both or neither and this choice loses nothing. Consecutive leaves
+// found with one shift are adjacent in the atom order and are scanned as one range. The work units
+// are the leaves; a leaf's candidates depend on that leaf only, so any split of the units gives the
+// same pairs in the same order.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -40,9 +43,9 @@ namespace tricell::detail {
 
 namespace {
 
-// Deeper than any useful split (each level halves one edge: 2^-16 of the box); a guard against
+// Deeper than any useful split (each level halves one edge: 2^-32 of the box); a guard against
 // adversarial inputs.
-constexpr int depth_limit = 48;
+constexpr int depth_limit = 96;
 // Leaves that share one descent of the tree (see visit()).
 constexpr std::uint32_t group_leaves = 8;
 
@@ -86,7 +89,17 @@ class OctreeBackend final : public Backend {
         nodes_.emplace_back();
         nodes_[0].begin = 0;
         nodes_[0].end = std::uint32_t(n);
-        split(0, 0, input.fractional, order);
+        // The root's region: [0, 1) on periodic axes, the atoms' extent on open ones. Each split
+        // halves a node's region at the midpoint of its atoms' tight box.
+        Eigen::Vector3d region_lo = input.lower, region_hi = input.upper;
+        for (int k = 0; k < 3; ++k) {
+            if (input.frame.periodicity()[k]) {
+                region_lo[k] = 0;
+                region_hi[k] = 1;
+            }
+        }
+        leaf_volume_.clear();
+        split(0, 0, region_lo, region_hi, input.fractional, order);
         std::vector<std::uint32_t> parent(nodes_.size(), 0);
         for (std::uint32_t id = 0; id < nodes_.size(); ++id) {
             for (std::uint32_t c = 0; c < nodes_[id].children; ++c) {
@@ -105,27 +118,30 @@ class OctreeBackend final : public Backend {
         scratch_.clear();
         scratch_.shrink_to_fit();
         choose_shifts(input.frame.periodicity());
+        // The average number of candidate leaves (for the work estimate), from a few evenly
+        // spaced leaves.
+        const std::size_t samples = std::min<std::size_t>(leaves_.size(), 32);
+        double total = 0;
+        for (std::size_t k = 0; k < samples; ++k) {
+            const std::size_t l = k * leaves_.size() / samples;
+            for (const std::array<int, 3>& shift : shifts_) {
+                descend(nodes_[leaves_[l]], std::uint32_t(l), shift,
+                        [&](std::uint32_t) { total += 1; });
+            }
+        }
+        neighbours_ = samples > 0 ? total / double(samples) : 0;
     }
 
     std::size_t unit_count() const override { return leaves_.size(); }
 
-    void unit_occupancy(std::vector<double>& atoms, double& neighbours) const override {
-        atoms.resize(leaves_.size());
+    void occupancy(UnitOccupancy& out) const override {
+        out.atoms.resize(leaves_.size());
         for (std::size_t l = 0; l < leaves_.size(); ++l) {
             const Node& leaf = nodes_[leaves_[l]];
-            atoms[l] = double(leaf.end - leaf.begin);
+            out.atoms[l] = double(leaf.end - leaf.begin);
         }
-        // The average number of candidate leaves, from a few evenly spaced leaves.
-        const std::size_t samples = std::min<std::size_t>(leaves_.size(), 64);
-        double total = 0;
-        for (std::size_t k = 0; k < samples; ++k) {
-            const std::size_t l = k * leaves_.size() / samples;
-            for (const std::array<int, 3>& s : shifts_) {
-                descend(nodes_[leaves_[l]], std::uint32_t(l), s,
-                        [&](std::uint32_t) { total += 1; });
-            }
-        }
-        neighbours = samples > 0 ? total / double(samples) : 0;
+        out.volume = leaf_volume_;
+        out.neighbours = neighbours_;
     }
 
     void visit(std::size_t begin, std::size_t end, CandidateScanner& scan) const override {
@@ -249,7 +265,9 @@ class OctreeBackend final : public Backend {
     }
 
     // Splits node `id` (atoms order[begin, end)) until its leaves hold at most leaf_size_ atoms.
-    void split(std::uint32_t id, int depth, const std::vector<Eigen::Vector3d>& frac,
+    // `region` is the part of space the node stands for (its leaves' regions tile the root's).
+    void split(std::uint32_t id, int depth, const Eigen::Vector3d& region_lo,
+               const Eigen::Vector3d& region_hi, const std::vector<Eigen::Vector3d>& frac,
                std::vector<std::uint32_t>& order) {
         const std::uint32_t begin = nodes_[id].begin, end = nodes_[id].end;
         Eigen::Vector3d lo = frac[order[begin]], hi = lo;
@@ -264,12 +282,20 @@ class OctreeBackend final : public Backend {
             nodes_[id].children = 0;
             nodes_[id].last_leaf = nodes_[id].first_leaf;
             leaves_.push_back(id);
+            // Fractional volume of the leaf's region; an axis without extent (atoms in a plane
+            // of an open axis) counts as one search radius thick, as in the pair estimate.
+            double volume = 1;
+            for (int k = 0; k < 3; ++k) {
+                const double extent = region_hi[k] - region_lo[k];
+                volume *= extent > 0 ? extent : radius_ / widths_[k];
+            }
+            leaf_volume_.push_back(volume);
         };
         if (std::size_t(end - begin) <= leaf_size_ || depth >= depth_limit) {
             make_leaf();
             return;
         }
-        // Axes to halve: those not much thinner than the longest edge.
+        // The axis to halve: the longest edge (all of them when tied, as in a cube).
         double longest = 0;
         Eigen::Vector3d length;
         for (int k = 0; k < 3; ++k) {
@@ -314,18 +340,27 @@ class OctreeBackend final : public Backend {
         std::copy(scratch_.begin() + begin, scratch_.begin() + end, order.begin() + begin);
 
         const std::uint32_t first_child = std::uint32_t(nodes_.size());
-        for (int o = 0; o < 8; ++o) {
-            if (start[std::size_t(o) + 1] > start[std::size_t(o)]) {
+        std::array<unsigned, 8> octants{};
+        for (unsigned o = 0; o < 8; ++o) {
+            if (start[o + 1] > start[o]) {
                 Node child;
-                child.begin = begin + start[std::size_t(o)];
-                child.end = begin + start[std::size_t(o) + 1];
+                child.begin = begin + start[o];
+                child.end = begin + start[o + 1];
+                octants[nodes_.size() - first_child] = o;
                 nodes_.push_back(child);
             }
         }
         nodes_[id].first_child = first_child;
         nodes_[id].children = std::uint32_t(nonempty);
         for (std::uint32_t c = 0; c < std::uint32_t(nonempty); ++c) {
-            split(first_child + c, depth + 1, frac, order);
+            Eigen::Vector3d child_lo = region_lo, child_hi = region_hi;
+            for (int k = 0; k < 3; ++k) {
+                if (cut[k]) {
+                    const bool upper_half = ((octants[c] >> (2 - k)) & 1u) != 0;
+                    (upper_half ? child_lo : child_hi)[k] = mid[k];
+                }
+            }
+            split(first_child + c, depth + 1, child_lo, child_hi, frac, order);
         }
         nodes_[id].last_leaf = std::uint32_t(leaves_.size()) - 1;
     }
@@ -363,6 +398,8 @@ class OctreeBackend final : public Backend {
     std::size_t leaf_size_ = 8;
     std::vector<Node> nodes_;
     std::vector<std::uint32_t> group_;  // the node whose candidates each leaf filters
+    std::vector<double> leaf_volume_;   // fractional volume of each leaf's region
+    double neighbours_ = 0;             // average candidate leaves of a leaf
     std::vector<std::uint32_t> leaves_; // node of each leaf, in atom order
     std::vector<std::array<int, 3>> shifts_;
     std::vector<std::uint32_t> scratch_;

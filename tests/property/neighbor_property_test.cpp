@@ -176,6 +176,75 @@ TYPED_TEST(NeighborProperty, SameListAsTheDenseBackend_RandomCases) {
     }
 }
 
+// Per-atom radii and per-species tables: the oracle at the largest cutoff, filtered by each
+// pair's own cutoff; a pair may differ only within rounding of its own cutoff.
+TYPED_TEST(NeighborProperty, VariableCutoffsEqualBruteForce_RandomCases) {
+    for (std::uint64_t seed = 7; seed < case_count; seed += 3) {
+        const RandomSystem sys = tricell::testing::random_system(seed);
+        SCOPED_TRACE(testing::Message() << "seed " << seed << " (" << sys.kind << ")");
+        std::mt19937_64 rng(seed + 99);
+        std::uniform_real_distribution<double> unit(0, 1);
+        const std::size_t n = sys.positions.size();
+        NeighborOptions o = this->options(seed, sys.cutoff);
+        o.cutoff = 0;
+        o.half = seed % 2 == 0;
+        const bool by_species = seed % 3 == 1;
+        std::vector<double> radius(n);
+        std::vector<std::int32_t> species(n);
+        // Species 0..2; the table covers (0,0), (0,1), (1,2) and (2,2): (0,2) and (1,1) never
+        // count.
+        const double table[3][3] = {{0.6, 0.9, 0.0}, {0.9, 0.0, 0.7}, {0.0, 0.7, 1.0}};
+        for (std::size_t i = 0; i < n; ++i) {
+            radius[i] = unit(rng) < 0.1 ? 0.0 : 0.5 * sys.cutoff * unit(rng);
+            species[i] = std::int32_t(rng() % 3);
+        }
+        if (by_species) {
+            o.species = species;
+            o.species_cutoffs = {{0, 0, 0.6 * sys.cutoff},
+                                 {1, 0, 0.9 * sys.cutoff},
+                                 {1, 2, 0.7 * sys.cutoff},
+                                 {2, 2, 1.0 * sys.cutoff}};
+        } else {
+            o.radii = radius;
+        }
+        auto cutoff_of = [&](std::uint32_t i, std::uint32_t j) {
+            return by_species ? table[species[i]][species[j]] * sys.cutoff : radius[i] + radius[j];
+        };
+        PairMap expected;
+        for (const auto& [key, value] :
+             tricell::testing::brute_force_pairs(sys.box(), sys.positions, sys.cutoff)) {
+            if (value.distance < cutoff_of(std::get<0>(key), std::get<1>(key))) {
+                expected[key] = value;
+            }
+        }
+        if (o.half) {
+            expected = tricell::testing::canonical_half(expected);
+        }
+        const NeighborList list = tricell::compute_neighbors(sys.box(), sys.positions, o);
+        const PairMap actual = tricell::testing::to_map(list);
+        ASSERT_EQ(actual.size(), list.size()) << "duplicates";
+        const double tol = tolerance(sys);
+        for (const auto& [key, value] : expected) {
+            const double c = cutoff_of(std::get<0>(key), std::get<1>(key));
+            if (actual.count(key) == 0 && std::abs(value.distance - c) > tol) {
+                ADD_FAILURE() << "missing pair d=" << value.distance << " cutoff " << c;
+            }
+        }
+        for (const auto& [key, value] : actual) {
+            const double c = cutoff_of(std::get<0>(key), std::get<1>(key));
+            if (!(value.distance < c)) {
+                ADD_FAILURE() << "pair at d=" << value.distance << " not below its cutoff " << c;
+            }
+            if (expected.count(key) == 0 && std::abs(value.distance - c) > tol) {
+                ADD_FAILURE() << "extra pair d=" << value.distance << " cutoff " << c;
+            }
+        }
+        if (::testing::Test::HasFailure()) {
+            return;
+        }
+    }
+}
+
 TYPED_TEST(NeighborProperty, ResultDoesNotDependOnTheGrid_RandomCases) {
     for (std::uint64_t seed = 1; seed < case_count; seed += 3) {
         const RandomSystem sys = tricell::testing::random_system(seed);
