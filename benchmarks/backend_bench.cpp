@@ -342,17 +342,16 @@ void run_droplet() {
     double last[5] = {0, 0, 0, 0, 0};
     for (const double side : {80.0, 400.0, 1600.0}) {
         const System sys = droplet(side, 3);
+        const std::vector<double> seconds =
+            time_backends(sys, {SearchBackend::dense, SearchBackend::linked, SearchBackend::hash,
+                                SearchBackend::octree, SearchBackend::automatic});
         double t[5];
-        int k = 0;
-        for (const SearchBackend b :
-             {SearchBackend::dense, SearchBackend::linked, SearchBackend::hash,
-              SearchBackend::octree, SearchBackend::automatic}) {
-            t[k] = 1e3 * time_search(sys, b);
+        for (int k = 0; k < 5; ++k) {
+            t[k] = 1e3 * seconds[std::size_t(k)];
             if (side == 80.0) {
                 first[k] = t[k];
             }
             last[k] = t[k];
-            ++k;
         }
         std::printf("%8g %10.2f %10.2f %10.2f %10.2f %10.2f %8s\n", side, t[0], t[1], t[2], t[3],
                     t[4], tricell::backend_name(chosen(sys)));
@@ -365,7 +364,7 @@ void run_droplet() {
 void run_liquid() {
     const System sys = uniform(0.1, 32000, 11);
     std::vector<double> dense, automatic;
-    for (int r = 0; r < 5; ++r) { // interleaved, so drifts of the machine hit both alike
+    for (int r = 0; r < 11; ++r) { // interleaved, so drifts of the machine hit both alike
         dense.push_back(time_search(sys, SearchBackend::dense));
         automatic.push_back(time_search(sys, SearchBackend::automatic));
     }

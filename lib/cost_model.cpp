@@ -219,6 +219,17 @@ double octree_cost_per_atom(double density, double cutoff, const OctreeCosts& co
     return costs.octree[0] + costs.octree[1] * tests;
 }
 
+bool grid_always_cheaper(SearchBackend grid, double cutoff, const OctreeCosts& costs) {
+    const double volume = cutoff * cutoff * cutoff;
+    for (double x = 1e-6; x <= 16; x *= 1.25) { // up to the densest fitted (0.1 /A^3 at 5 A)
+        if (grid_cost_per_atom(grid, x / volume, cutoff, costs) >=
+            octree_cost_per_atom(x / volume, cutoff, costs)) {
+            return false;
+        }
+    }
+    return true;
+}
+
 double octree_crossover(SearchBackend grid, double rho_hi, double rho_lo, double cutoff,
                         const OctreeCosts& costs) {
     const double saved_lo = rho_lo * (grid_cost_per_atom(grid, rho_lo, cutoff, costs) -

@@ -232,7 +232,8 @@ Box search_frame(const Box& box, bool allow_reduction, Eigen::Matrix3i& transfor
 
 // The backend for `automatic` (cost_model.hpp): the grid choose_grid_backend() picks (dense when
 // the cells the cutoff asks for fit under its cap, the compact hash otherwise), unless the
-// octree is cheaper by the density model. That model sums each structure's cost per atom u(rho)
+// octree is cheaper by the density model (never when the grid is cheaper at every density, as the
+// dense grid is on the reference machine). That model sums each structure's cost per atom u(rho)
 // over the atoms, each at its local density, estimated from a sample of at most 4096 atoms
 // binned in cells of at least 2 r (the two-density model's T is this sum for two densities).
 SearchBackend automatic_backend(const Box& box, const std::vector<Eigen::Vector3d>& fractional,
@@ -247,6 +248,10 @@ SearchBackend automatic_backend(const Box& box, const std::vector<Eigen::Vector3
     }
     const double cap = options.max_cells != 0 ? double(options.max_cells) : 4.0 * double(n) + 64;
     const SearchBackend grid = choose_grid_backend(cells, cap);
+    const OctreeCosts costs;
+    if (grid_always_cheaper(grid, search_radius, costs)) {
+        return grid; // at no density does the octree win: no need to look at the atoms
+    }
 
     // Local densities of a sample: coarse cells of side >= 2 r, keys sorted, runs counted.
     std::array<double, 3> origin{}, scale{};
@@ -277,7 +282,6 @@ SearchBackend automatic_backend(const Box& box, const std::vector<Eigen::Vector3
         keys[t] = key;
     }
     std::sort(keys.begin(), keys.end());
-    const OctreeCosts costs;
     const double weight = double(n) / double(samples);
     double grid_cost = 0, octree_cost = 0;
     for (std::size_t t = 0; t < samples;) {

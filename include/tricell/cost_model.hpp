@@ -178,11 +178,11 @@ TRICELL_API SkinPrediction tune_skin(const SkinCostModel& model);
 
 /// Constants of the grid-vs-octree model, ns per atom (see above; fitted by backend_bench).
 struct OctreeCosts {
-    double dense[3] = {250, 14, 0.55}; ///< g_0, g_visit, g_test of the dense grid
-    double hash[3] = {380, 40, 0.60};  ///< g_0, g_visit, g_test of the compact hash
-    double octree[2] = {200, 12};      ///< o_0, o_1
-    double leaf_occupancy = 11;        ///< n: mean atoms per leaf at leaf_size
-    double leaf_size = 16;             ///< n_max when NeighborOptions::leaf_size is 0
+    double dense[3] = {539.9, -9.92, 0.8556}; ///< g_0, g_visit, g_test of the dense grid
+    double hash[3] = {785.6, 8.903, 0.3395};  ///< g_0, g_visit, g_test of the compact hash
+    double octree[2] = {253.4, 1.873};        ///< o_0, o_1
+    double leaf_occupancy = 11;               ///< n: mean atoms per leaf at leaf_size
+    double leaf_size = 16;                    ///< n_max when NeighborOptions::leaf_size is 0
 };
 
 /// The octree's n_max when NeighborOptions::leaf_size is 0.
@@ -194,6 +194,11 @@ TRICELL_API double grid_cost_per_atom(SearchBackend grid, double density, double
 /// u_oct(rho).
 TRICELL_API double octree_cost_per_atom(double density, double cutoff,
                                         const OctreeCosts& costs = OctreeCosts());
+/// True when u_grid < u_oct at every density rho with rho r^3 from 1e-6 to 16 (r = `cutoff`;
+/// the range the constants were fitted over)
+/// (then no mixture of densities can favour the octree and auto need not look at the atoms).
+TRICELL_API bool grid_always_cheaper(SearchBackend grid, double cutoff,
+                                     const OctreeCosts& costs = OctreeCosts());
 /// f*: below this volume fraction of the dense phase the octree is the cheaper (see above).
 TRICELL_API double octree_crossover(SearchBackend grid, double rho_hi, double rho_lo, double cutoff,
                                     const OctreeCosts& costs = OctreeCosts());
