@@ -169,12 +169,15 @@ TRICELL_API SkinPrediction tune_skin(const SkinCostModel& model);
 //     D_lo = u_grid(rho_lo) - u_oct(rho_lo),   D_hi = u_oct(rho_hi) - u_grid(rho_hi),
 // and the octree is the cheaper for f < f* (f* = 0 when the octree loses at both densities, 1 when
 // it wins at both). f* is small whenever rho_lo << rho_hi: the dense phase must be a small part
-// of the volume before the vapour's savings outweigh its extra cost. automatic_backend()
-// estimates f, rho_hi, rho_lo from a coarse histogram of the atoms (cells of at least 2 r, at
-// most N of them; the cells above the mean occupancy are the dense phase) and compares T_grid
-// with T_oct. The constants below were fitted by benchmarks/backend_bench.cpp (`uniform`) on the
-// reference machine (one core), in nanoseconds per atom, and checked there (`mixture`) against
-// the measured crossover of two-density systems.
+// of the volume before the vapour's savings outweigh its extra cost. automatic_backend() (in
+// lib/neighbor_list.cpp) evaluates T in its general form, the sum of u(rho_i) over the atoms,
+// with each atom's local density rho_i read from a sample of at most 4096 atoms binned in cells
+// of at least 2 r, and takes the octree when T_oct < 0.7 T_grid (a clear win: those cells read a
+// cluster's surface as vapour, and the fitted costs scatter by about 20%); it skips the sample
+// when grid_always_cheaper() (the dense grid, on the reference machine). The constants below were
+// fitted by benchmarks/backend_bench.cpp (`uniform`) on the reference machine (one core), in
+// nanoseconds per atom, and checked there (`mixture`) against the measured crossover of two-density
+// systems.
 
 /// Constants of the grid-vs-octree model, ns per atom (see above; fitted by backend_bench).
 struct OctreeCosts {
