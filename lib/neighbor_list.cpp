@@ -290,7 +290,8 @@ SearchBackend automatic_backend(const Box& box, const std::vector<Eigen::Vector3
             ++u;
         }
         const double count = double(u - t);
-        const double density = count * weight / cell_volume;
+        // The atom itself, plus the others of its cell the sample stands for.
+        const double density = (1 + (count - 1) * weight) / cell_volume;
         grid_cost += count * grid_cost_per_atom(grid, density, search_radius, costs);
         octree_cost += count * octree_cost_per_atom(density, search_radius, costs);
         t = u;
