@@ -202,4 +202,51 @@ SkinPrediction tune_skin(const SkinCostModel& model) {
     return best;
 }
 
+std::size_t octree_leaf_size(const OctreeCosts& costs) {
+    return std::size_t(std::max(1.0, std::round(costs.leaf_size)));
+}
+
+double grid_cost_per_atom(SearchBackend grid, double density, double cutoff,
+                          const OctreeCosts& costs) {
+    const double* g = grid == SearchBackend::hash ? costs.hash : costs.dense;
+    const double lambda = density * cutoff * cutoff * cutoff;
+    const double visits = lambda > 1e-12 ? (1 - std::exp(-lambda)) / lambda : 1.0;
+    constexpr double stencil = 27;
+    return g[0] + g[1] * stencil * visits + g[2] * stencil * lambda;
+}
+
+double octree_cost_per_atom(double density, double cutoff, const OctreeCosts& costs) {
+    const double x = density * cutoff * cutoff * cutoff;
+    const double n = costs.leaf_occupancy;
+    const double tests =
+        8 * n + 24 * std::cbrt(n * n * x) + 6 * pi * std::cbrt(n * x * x) + 4 * pi / 3 * x;
+    return costs.octree[0] + costs.octree[1] * tests;
+}
+
+bool grid_always_cheaper(SearchBackend grid, double cutoff, const OctreeCosts& costs) {
+    const double volume = cutoff * cutoff * cutoff;
+    for (double x = 1e-6; x <= 16; x *= 1.25) { // up to the densest fitted (0.1 /A^3 at 5 A)
+        if (grid_cost_per_atom(grid, x / volume, cutoff, costs) >=
+            octree_cost_per_atom(x / volume, cutoff, costs)) {
+            return false;
+        }
+    }
+    return true;
+}
+
+double octree_crossover(SearchBackend grid, double rho_hi, double rho_lo, double cutoff,
+                        const OctreeCosts& costs) {
+    const double saved_lo = rho_lo * (grid_cost_per_atom(grid, rho_lo, cutoff, costs) -
+                                      octree_cost_per_atom(rho_lo, cutoff, costs));
+    const double lost_hi = rho_hi * (octree_cost_per_atom(rho_hi, cutoff, costs) -
+                                     grid_cost_per_atom(grid, rho_hi, cutoff, costs));
+    if (saved_lo <= 0) {
+        return lost_hi < 0 ? 1.0 : 0.0;
+    }
+    if (lost_hi <= 0) {
+        return 1.0;
+    }
+    return saved_lo / (saved_lo + lost_hi);
+}
+
 } // namespace tricell

@@ -4,6 +4,7 @@
 #include "tricell/neighbor_list.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <exception>
 #include <limits>
@@ -232,11 +233,16 @@ Box search_frame(const Box& box, bool allow_reduction, Eigen::Matrix3i& transfor
 }
 
 // The backend for `automatic` (cost_model.hpp): direct enumeration for a few atoms in a cell
-// narrower than the cutoff, else the dense grid when the cells the cutoff asks for fit under its
-// cap, the compact hash otherwise.
-SearchBackend automatic_backend(const Box& box, const Eigen::Vector3d& lower,
-                                const Eigen::Vector3d& upper, double search_radius,
-                                const NeighborOptions& options, std::size_t n) {
+// narrower than the cutoff (choose_direct()); else the grid choose_grid_backend() picks (dense when
+// the cells the cutoff asks for fit under its cap, the compact hash otherwise), unless the
+// octree is cheaper by the density model (never when the grid is cheaper at every density, as the
+// dense grid is on the reference machine). That model sums each structure's cost per atom u(rho)
+// over the atoms, each at its local density, estimated from a sample of at most 4096 atoms
+// binned in cells of at least 2 r (the two-density model's T is this sum for two densities).
+SearchBackend automatic_backend(const Box& box, const std::vector<Eigen::Vector3d>& fractional,
+                                const Eigen::Vector3d& lower, const Eigen::Vector3d& upper,
+                                double search_radius, const NeighborOptions& options,
+                                std::size_t n) {
     double min_width = std::numeric_limits<double>::infinity();
     for (int k = 0; k < 3; ++k) {
         if (box.periodic(k)) {
@@ -253,7 +259,58 @@ SearchBackend automatic_backend(const Box& box, const Eigen::Vector3d& lower,
         cells *= std::max(1.0, std::floor(span * box.perpendicular_widths()[k] / h));
     }
     const double cap = options.max_cells != 0 ? double(options.max_cells) : 4.0 * double(n) + 64;
-    return choose_grid_backend(cells, cap);
+    const SearchBackend grid = choose_grid_backend(cells, cap);
+    const OctreeCosts costs;
+    if (grid_always_cheaper(grid, search_radius, costs)) {
+        return grid; // at no density does the octree win: no need to look at the atoms
+    }
+
+    // Local densities of a sample: coarse cells of side >= 2 r, keys sorted, runs counted.
+    std::array<double, 3> origin{}, scale{};
+    std::array<std::uint64_t, 3> dims{};
+    double cell_volume = box.volume();
+    for (int k = 0; k < 3; ++k) {
+        const std::size_t a = std::size_t(k);
+        const double span = box.periodic(k) ? 1.0 : upper[k] - lower[k];
+        const double width = span * box.perpendicular_widths()[k];
+        dims[a] = std::uint64_t(std::clamp(std::floor(width / (2 * search_radius)), 1.0, 1e6));
+        origin[a] = box.periodic(k) ? 0.0 : lower[k];
+        scale[a] = span > 0 ? double(dims[a]) / span : 0.0;
+        // An open axis thinner than the cutoff counts as one cutoff thick (as the pair estimate).
+        cell_volume *=
+            (box.periodic(k) ? 1.0
+                             : std::max(span, search_radius / box.perpendicular_widths()[k])) /
+            double(dims[a]);
+    }
+    const std::size_t samples = std::min<std::size_t>(n, 4096);
+    std::vector<std::uint64_t> keys(samples);
+    for (std::size_t t = 0; t < samples; ++t) {
+        const Eigen::Vector3d& s = fractional[t * n / samples];
+        std::uint64_t key = 0;
+        for (std::size_t a = 0; a < 3; ++a) {
+            const double c = std::floor((s[int(a)] - origin[a]) * scale[a]);
+            key = key * dims[a] + std::uint64_t(std::clamp(c, 0.0, double(dims[a] - 1)));
+        }
+        keys[t] = key;
+    }
+    std::sort(keys.begin(), keys.end());
+    const double weight = double(n) / double(samples);
+    double grid_cost = 0, octree_cost = 0;
+    for (std::size_t t = 0; t < samples;) {
+        std::size_t u = t;
+        while (u < samples && keys[u] == keys[t]) {
+            ++u;
+        }
+        const double count = double(u - t);
+        // The atom itself, plus the others of its cell the sample stands for.
+        const double density = (1 + (count - 1) * weight) / cell_volume;
+        grid_cost += count * grid_cost_per_atom(grid, density, search_radius, costs);
+        octree_cost += count * octree_cost_per_atom(density, search_radius, costs);
+        t = u;
+    }
+    // Only a clear win (30%): the per-cell estimate reads the surface cells of a dense cluster as
+    // vapour, which overstates the octree's gain, and the fitted costs scatter by about 20%.
+    return octree_cost < 0.7 * grid_cost ? SearchBackend::octree : grid;
 }
 
 } // namespace
@@ -374,7 +431,7 @@ void NeighborSearch::build(const Box& caller_box, PointsView positions,
 
     SearchBackend kind = options.backend;
     if (kind == SearchBackend::automatic) {
-        kind = automatic_backend(box, lower, upper, s.search_radius, options, n);
+        kind = automatic_backend(box, fractional, lower, upper, s.search_radius, options, n);
     }
     std::unique_ptr<detail::Backend>& pooled = s.pool[static_cast<int>(kind)];
     if (!pooled) {

@@ -157,4 +157,67 @@ TRICELL_API SkinPrediction tune_skin(const SkinCostModel& model, CellSize cell_s
 /// The skin and cell-size rule minimising the cost per step.
 TRICELL_API SkinPrediction tune_skin(const SkinCostModel& model);
 
+// ---- Uniform grid or octree: the two-density model (design note 001) -------------------------
+//
+// A system of volume V holds a volume fraction f at density rho_hi and the rest at rho_lo (a
+// droplet or a liquid slab in its vapour, a cluster in vacuum). Both structures cost about the
+// same per atom wherever the density is the same, so each is described by its cost per atom u(rho)
+// at a uniform density, and the whole search costs
+//     T = V [ f rho_hi u(rho_hi) + (1 - f) rho_lo u(rho_lo) ].
+// Uniform grid (cells of side h = r / k, K stencil cells; occupancy lambda = rho h^3): building is
+// a pass per atom, searching visits K cells per non-empty cell (a fraction 1 - e^-lambda of the
+// cells are non-empty, so per atom (1 - e^-lambda) / lambda of them) and tests K lambda atoms:
+//     u_grid(rho) = g_0 + g_visit K (1 - e^-lambda) / lambda + g_test K lambda.
+// The dense grid and the hash have their own constants (the hash pays a lookup per visit); the
+// grid is the one choose_grid_backend() picks. Octree (leaves of about n atoms, side
+// l = (n / rho)^(1/3)): an atom is tested against the leaves whose boxes come within r of its
+// leaf, about the atoms of a cube of side 2 l dilated by r (Minkowski: cube plus slabs, quarter
+// cylinders and a ball), so with x = rho r^3 the tests per atom and the leaf pairs per atom are
+//     t(rho) = 8 n + 24 n^(2/3) x^(1/3) + 6 pi n^(1/3) x^(2/3) + (4 pi / 3) x,   t / n,
+// and building splits each atom through about log8(N / n) levels (folded into o_0):
+//     u_oct(rho) = o_0 + (o_test + o_leaf / n) t(rho) = o_0 + o_1 t(rho).
+// The octree adapts its cells to the density, the grid does not: at low density the grid pays
+// K visits per atom for nearly empty cells (u_grid > u_oct), at high density its contiguous rows
+// beat the tree's walk (u_grid < u_oct). Setting T_grid = T_oct gives the crossover
+//     f* = rho_lo D_lo / (rho_lo D_lo + rho_hi D_hi),
+//     D_lo = u_grid(rho_lo) - u_oct(rho_lo),   D_hi = u_oct(rho_hi) - u_grid(rho_hi),
+// and the octree is the cheaper for f < f* (f* = 0 when the octree loses at both densities, 1 when
+// it wins at both). f* is small whenever rho_lo << rho_hi: the dense phase must be a small part
+// of the volume before the vapour's savings outweigh its extra cost. automatic_backend() (in
+// lib/neighbor_list.cpp) evaluates T in its general form, the sum of u(rho_i) over the atoms,
+// with each atom's local density rho_i read from a sample of at most 4096 atoms binned in cells
+// of at least 2 r, and takes the octree when T_oct < 0.7 T_grid (a clear win: those cells read a
+// cluster's surface as vapour, and the fitted costs scatter by about 20%); it skips the sample
+// when grid_always_cheaper() (the dense grid, on the reference machine). The constants below were
+// fitted by benchmarks/backend_bench.cpp (`uniform`) on the reference machine (one core), in
+// nanoseconds per atom, and checked there (`mixture`) against the measured crossover of two-density
+// systems.
+
+/// Constants of the grid-vs-octree model, ns per atom (see above; fitted by backend_bench).
+struct OctreeCosts {
+    double dense[3] = {539.9, -9.92, 0.8556}; ///< g_0, g_visit, g_test of the dense grid
+    double hash[3] = {785.6, 8.903, 0.3395};  ///< g_0, g_visit, g_test of the compact hash
+    double octree[2] = {253.4, 1.873};        ///< o_0, o_1
+    double leaf_occupancy = 11;               ///< n: mean atoms per leaf at leaf_size
+    double leaf_size = 16;                    ///< n_max when NeighborOptions::leaf_size is 0
+};
+
+/// The octree's n_max when NeighborOptions::leaf_size is 0.
+TRICELL_API std::size_t octree_leaf_size(const OctreeCosts& costs = OctreeCosts());
+
+/// u_grid(rho) of the dense grid or the hash (`grid`), cubic cells of side cutoff.
+TRICELL_API double grid_cost_per_atom(SearchBackend grid, double density, double cutoff,
+                                      const OctreeCosts& costs = OctreeCosts());
+/// u_oct(rho).
+TRICELL_API double octree_cost_per_atom(double density, double cutoff,
+                                        const OctreeCosts& costs = OctreeCosts());
+/// True when u_grid < u_oct at every density rho with rho r^3 from 1e-6 to 16 (r = `cutoff`;
+/// the range the constants were fitted over)
+/// (then no mixture of densities can favour the octree and auto need not look at the atoms).
+TRICELL_API bool grid_always_cheaper(SearchBackend grid, double cutoff,
+                                     const OctreeCosts& costs = OctreeCosts());
+/// f*: below this volume fraction of the dense phase the octree is the cheaper (see above).
+TRICELL_API double octree_crossover(SearchBackend grid, double rho_hi, double rho_lo, double cutoff,
+                                    const OctreeCosts& costs = OctreeCosts());
+
 } // namespace tricell

@@ -39,10 +39,14 @@ class DirectBackend final : public Backend {
         // |D| >= |T| - |x_b - x_a| and |x_b - x_a| <= the diagonal of the atoms' bounding box
         // (plus a margin for the rounding between fractional and Cartesian positions).
         const double reach = input.search_radius + (hi - lo).norm() * (1 + 1e-12) + 1e-12;
+        // Along a periodic axis the wrapped fractional coordinates differ by less than 1, and
+        // |D| >= w_k |(s_b - s_a + S)_k|, so |S_k| < r / w_k + 1 whatever the spread of the atoms
+        // along open axes (which only loosens the |T| bound above).
         int m[3];
         for (int k = 0; k < 3; ++k) {
+            const double w = input.frame.perpendicular_widths()[k];
             m[k] = input.frame.periodic(k)
-                       ? int(std::ceil(reach / input.frame.perpendicular_widths()[k]))
+                       ? int(std::min(std::ceil(reach / w), std::ceil(input.search_radius / w) + 1))
                        : 0;
         }
         // S = 0 first, then S < 0, then S > 0 lexicographically (from positive_begin_).

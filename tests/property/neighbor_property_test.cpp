@@ -112,9 +112,10 @@ template <class T> class NeighborProperty : public ::testing::Test {
     }
 };
 
-using Backends = ::testing::Types<Backend<SearchBackend::dense>, Backend<SearchBackend::linked>,
-                                  Backend<SearchBackend::hash>, Backend<SearchBackend::direct>,
-                                  Backend<SearchBackend::automatic>>;
+using Backends =
+    ::testing::Types<Backend<SearchBackend::dense>, Backend<SearchBackend::linked>,
+                     Backend<SearchBackend::hash>, Backend<SearchBackend::octree>,
+                     Backend<SearchBackend::direct>, Backend<SearchBackend::automatic>>;
 struct BackendNames {
     template <class T> static std::string GetName(int) { return tricell::backend_name(T::value); }
 };
