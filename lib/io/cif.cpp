@@ -240,7 +240,7 @@ Box read_cell(BlockReader& reader) {
     try {
         return Box::from_parameters(p[0], p[1], p[2], p[3], p[4], p[5]);
     } catch (const Error& e) {
-        reader.fail(first_line, "invalid cell: ", e.what());
+        reader.fail(first_line, "invalid cell: ", one_line(e.what()));
     }
 }
 
@@ -307,8 +307,8 @@ std::vector<Operator> read_operators(BlockReader& reader, const Box& box) {
                 }
                 op = gemmi::parse_triplet(text);
             } catch (const std::exception& e) {
-                reader.fail(line, "invalid symmetry operator ", quote(text), " (", e.what(),
-                            "), expected a triplet such as '-y, x-y, z+1/3'");
+                reader.fail(line, "invalid symmetry operator ", quote(text), " (",
+                            one_line(e.what()), "), expected a triplet such as '-y, x-y, z+1/3'");
             }
             const std::string problem = check_operator(op);
             if (!problem.empty()) {
@@ -333,8 +333,8 @@ std::vector<Operator> read_operators(BlockReader& reader, const Box& box) {
         try {
             group = gemmi::symops_from_hall(symbol.c_str());
         } catch (const std::exception& e) {
-            reader.fail(reader.line(hall, 0), "invalid Hall symbol ", quote(symbol), " (", e.what(),
-                        ")");
+            reader.fail(reader.line(hall, 0), "invalid Hall symbol ", quote(symbol), " (",
+                        one_line(e.what()), ")");
         }
     } else if (hm && !cif::is_null(hm.at(0))) {
         const std::string symbol = cif::as_string(hm.at(0));
@@ -402,7 +402,7 @@ Structure parse_cif(const std::string& text, const std::string& name, const Read
                                                  byte, std::max<std::size_t>(end - byte, 1)))) +
                       ", expected a tag (_name) with its value, loop_ with its tags, or data_NAME";
         }
-        tricell::detail::fail_parse(name, line, "CIF syntax error: ", message);
+        tricell::detail::fail_parse(name, line, "CIF syntax error: ", one_line(message));
     }
     if (doc.blocks.empty()) {
         tricell::detail::fail_parse(name, 0,
