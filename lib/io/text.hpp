@@ -64,7 +64,8 @@ std::string one_line(std::string_view message);
 
 /// Per-format readers on the text of a file called `name`.
 Structure parse_cif(const std::string& text, const std::string& name, const ReadOptions& options);
-Structure parse_poscar(const std::string& text, const std::string& name);
-Structure parse_xyz(const std::string& text, const std::string& name);
+Structure parse_poscar(const std::string& text, const std::string& name,
+                       const ReadOptions& options);
+Structure parse_xyz(const std::string& text, const std::string& name, const ReadOptions& options);
 
 } // namespace tricell::io::detail
