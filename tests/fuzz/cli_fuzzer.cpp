@@ -106,11 +106,18 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
              {"si.vasp", slurp(root + "/tests/io/data/si.vasp")},
              {"water.xyz", slurp(root + "/tests/io/data/water.xyz")},
              {"graphene.extxyz", slurp(root + "/tests/io/data/graphene.extxyz")}};
-    char scratch[] = "/tmp/tricell-cli-fuzz.XXXXXX";
+    static char scratch[] = "/tmp/tricell-cli-fuzz.XXXXXX";
     if (::mkdtemp(scratch) == nullptr || ::chdir(scratch) != 0) {
         std::perror("cli_fuzzer: scratch directory");
         std::abort();
     }
+    std::atexit([] {
+        files.clear();
+        remove_others();
+        if (::chdir("/") == 0) {
+            ::rmdir(scratch);
+        }
+    });
     if (std::freopen("/dev/null", "w", stdout) == nullptr) {
         std::abort();
     }
