@@ -22,17 +22,18 @@ runs="${TRICELL_FUZZ_RUNS:-10000000}"
 bash scripts/fuzz-build.sh
 summary=()
 for name in "${harnesses[@]}"; do
-    dir="build-fuzz/campaign/$name"
+    # Absolute paths: cli_fuzzer works in a scratch directory of its own.
+    dir="$PWD/build-fuzz/campaign/$name"
     mkdir -p "$dir/corpus" "$dir/artifacts"
     dict=()
     if [ -f "tests/fuzz/$name.dict" ]; then
-        dict=("-dict=tests/fuzz/$name.dict")
+        dict=("-dict=$PWD/tests/fuzz/$name.dict")
     fi
     echo "== $name: up to $runs runs or $seconds s"
     status=0
     "build-fuzz/tests/fuzz/${name}_fuzzer" -rss_limit_mb=2048 -timeout=10 -close_fd_mask=3 \
         -runs="$runs" -max_total_time="$seconds" -print_final_stats=1 \
-        "${dict[@]}" -artifact_prefix="$dir/artifacts/" "$dir/corpus" "tests/fuzz/corpus/$name" \
+        "${dict[@]}" -artifact_prefix="$dir/artifacts/" "$dir/corpus" "$PWD/tests/fuzz/corpus/$name" \
         >"$dir/log" 2>&1 || status=$?
     executed=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$dir/log" | tail -1 | grep -o '[0-9]*$' || echo "?")
     speed=$(grep -o 'stat::average_exec_per_sec: *[0-9]*' "$dir/log" | tail -1 | grep -o '[0-9]*$' || echo "?")

@@ -52,7 +52,13 @@ bool known(const std::string& name) {
     return false;
 }
 
+char scratch[] = "/tmp/tricell-cli-fuzz.XXXXXX";
+
 void remove_others() {
+    char here[sizeof scratch + 1];
+    if (::getcwd(here, sizeof here) == nullptr || std::string(here) != scratch) {
+        return; // only ever clean the scratch directory
+    }
     DIR* dir = ::opendir(".");
     if (dir == nullptr) {
         return;
@@ -106,7 +112,6 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
              {"si.vasp", slurp(root + "/tests/io/data/si.vasp")},
              {"water.xyz", slurp(root + "/tests/io/data/water.xyz")},
              {"graphene.extxyz", slurp(root + "/tests/io/data/graphene.extxyz")}};
-    static char scratch[] = "/tmp/tricell-cli-fuzz.XXXXXX";
     if (::mkdtemp(scratch) == nullptr || ::chdir(scratch) != 0) {
         std::perror("cli_fuzzer: scratch directory");
         std::abort();

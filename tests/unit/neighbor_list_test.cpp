@@ -1,5 +1,7 @@
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <random>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -169,6 +171,66 @@ TEST(NeighborList, RejectsBadCutoff) {
                      "threads must be in [0, 1024] (got -2)");
 }
 
+TEST(NeighborList, RejectsBadVariableCutoffsNamingThem) {
+    const std::vector<Eigen::Vector3d> x{{0, 0, 0}, {1, 0, 0}};
+    NeighborOptions o;
+    o.radii = {1.0, -0.5};
+    EXPECT_THROW_MSG(tricell::compute_neighbors(cube10, x, o), tricell::InvalidArgument,
+                     "radii[1] must be finite and >= 0 (got -0.5)");
+    o.radii = {1.0};
+    EXPECT_THROW_MSG(tricell::compute_neighbors(cube10, x, o), tricell::InvalidArgument,
+                     "radii has 1 entries for 2 positions");
+    o.radii = {1.0, 1.0};
+    o.cutoff = 3;
+    EXPECT_THROW_MSG(tricell::compute_neighbors(cube10, x, o), tricell::InvalidArgument,
+                     "cutoff must be 0 when radii decide which pairs count (got 3)");
+    o.cutoff = 0;
+    o.species_cutoffs = {{1, 2, 2.0}};
+    EXPECT_THROW_MSG(tricell::compute_neighbors(cube10, x, o), tricell::InvalidArgument,
+                     "set radii or species_cutoffs, not both");
+    o.radii.clear();
+    EXPECT_THROW_MSG(tricell::compute_neighbors(cube10, x, o), tricell::InvalidArgument,
+                     "species has 0 entries for 2 positions");
+    o.species = {1, 2};
+    o.species_cutoffs = {{1, 2, 2.0}, {2, 1, 2.5}};
+    EXPECT_THROW_MSG(tricell::compute_neighbors(cube10, x, o), tricell::InvalidArgument,
+                     "species pair 2-1 has two cutoffs in species_cutoffs (2 and 2.5)");
+    o.species_cutoffs = {{1, 2, 0.0}};
+    EXPECT_THROW_MSG(tricell::compute_neighbors(cube10, x, o), tricell::InvalidArgument,
+                     "species_cutoffs[0] (species 1-2) must be finite and > 0 (got 0)");
+    o.species_cutoffs.clear();
+    o.cutoff = 1;
+    EXPECT_THROW_MSG(tricell::compute_neighbors(cube10, x, o), tricell::InvalidArgument,
+                     "species is set but species_cutoffs is empty");
+    o = NeighborOptions();
+    o.cutoff = 1;
+    o.hash_table_size = std::size_t(1) << 40;
+    EXPECT_THROW_MSG(tricell::compute_neighbors(cube10, x, o), tricell::InvalidArgument,
+                     "hash_table_size must be at most 2^31");
+    EXPECT_THROW_MSG(
+        tricell::parse_backend("fast"), tricell::InvalidArgument,
+        "unknown search backend 'fast' (expected auto, dense, linked, hash or octree)");
+    EXPECT_EQ(tricell::parse_backend("hash"), tricell::SearchBackend::hash);
+}
+
+TEST(NeighborList, ZeroRadiiOrAbsentSpeciesGiveNoPairs) {
+    const std::vector<Eigen::Vector3d> x{{0, 0, 0}, {1, 0, 0}};
+    NeighborOptions o;
+    o.radii = {0.0, 0.0};
+    o.sorted = true;
+    NeighborList list = tricell::compute_neighbors(cube10, x, o);
+    EXPECT_TRUE(list.empty());
+    EXPECT_EQ(list.offsets(), (std::vector<std::size_t>{0, 0, 0}));
+    o.radii.clear();
+    o.species = {1, 1};
+    o.species_cutoffs = {{1, 2, 5.0}}; // species 2 never occurs
+    EXPECT_TRUE(tricell::compute_neighbors(cube10, x, o).empty());
+    o.species_cutoffs = {{1, 1, 1.0}}; // d = 1 is not < 1
+    EXPECT_TRUE(tricell::compute_neighbors(cube10, x, o).empty());
+    o.species_cutoffs = {{1, 1, std::nextafter(1.0, 2.0)}};
+    EXPECT_EQ(tricell::compute_neighbors(cube10, x, o).size(), 2u);
+}
+
 TEST(NeighborList, RejectsNonFinitePositionNamingIt) {
     std::vector<Eigen::Vector3d> x(20, Eigen::Vector3d(1, 1, 1));
     x[17].y() = std::numeric_limits<double>::quiet_NaN();
@@ -266,4 +328,73 @@ TEST(NeighborList, RejectsAbsurdThreadAndCellCounts) {
     o.max_cells = std::size_t(1) << 40;
     EXPECT_THROW_MSG(tricell::compute_neighbors(cube10, x, o), tricell::InvalidArgument,
                      "max_cells must be at most 2^31");
+}
+
+namespace {
+
+// A dense cluster of `n` atoms (0.1 per cubic unit) centred at `centre`.
+std::vector<Eigen::Vector3d> cluster(std::size_t n, const Eigen::Vector3d& centre,
+                                     std::uint64_t seed) {
+    std::mt19937_64 rng(seed);
+    const double side = std::cbrt(double(n) / 0.1);
+    std::uniform_real_distribution<double> u(-side / 2, side / 2);
+    std::vector<Eigen::Vector3d> x(n);
+    for (auto& r : x) {
+        r = centre + Eigen::Vector3d(u(rng), u(rng), u(rng));
+    }
+    return x;
+}
+
+} // namespace
+
+TEST(HashBackend, OneSlotTableGivesTheSameListAsTheDenseGrid) {
+    // Every non-empty cell collides in the single slot: lookups must compare coordinates.
+    const auto x = cluster(400, Eigen::Vector3d(5, 5, 5), 3);
+    NeighborOptions o = with_cutoff(2.5);
+    o.sorted = true;
+    o.backend = tricell::SearchBackend::dense;
+    const NeighborList dense = tricell::compute_neighbors(cube10, x, o);
+    o.backend = tricell::SearchBackend::hash;
+    for (const std::size_t slots : {std::size_t(1), std::size_t(2), std::size_t(7)}) {
+        o.hash_table_size = slots;
+        const NeighborList hashed = tricell::compute_neighbors(cube10, x, o);
+        EXPECT_EQ(hashed.i(), dense.i()) << slots << " slots";
+        EXPECT_EQ(hashed.j(), dense.j());
+        EXPECT_EQ(hashed.shifts(), dense.shifts());
+        EXPECT_EQ(hashed.distances(), dense.distances());
+    }
+    EXPECT_GT(dense.size(), 1000u);
+}
+
+TEST(HashBackend, MemoryFollowsTheAtomsNotTheVolume) {
+    // Two clusters a million units apart along open axes, and a cluster in a periodic box of
+    // 10^4 per side: the hash stores at most one cell per atom, and auto takes it.
+    std::vector<Eigen::Vector3d> x = cluster(300, Eigen::Vector3d(0, 0, 0), 5);
+    const auto far = cluster(300, Eigen::Vector3d(1e6, -1e6, 3e5), 6);
+    x.insert(x.end(), far.begin(), far.end());
+    const Box open = Box::from_parameters(10, 10, 10, 90, 90, 90, tricell::Periodicity::none());
+    const Box huge = Box::from_parameters(1e4, 1e4, 1e4, 90, 90, 90);
+    for (const Box& box : {open, huge}) {
+        NeighborOptions o = with_cutoff(2.0);
+        tricell::NeighborSearch search;
+        search.build(box, x, o);
+        EXPECT_EQ(search.info().backend, tricell::SearchBackend::hash);
+        EXPECT_LE(search.info().stored_cells, x.size());
+        NeighborList list;
+        search.compute(list);
+        o.backend = tricell::SearchBackend::dense;
+        const NeighborList dense = tricell::compute_neighbors(box, x, o);
+        EXPECT_EQ(list.size(), dense.size());
+        EXPECT_GT(list.size(), 0u);
+    }
+}
+
+TEST(NeighborSearch, AutoTakesTheDenseGridForAUniformLiquid) {
+    std::vector<Eigen::Vector3d> x = cluster(2000, Eigen::Vector3d(0, 0, 0), 9);
+    const double side = std::cbrt(2000 / 0.1);
+    const Box box = Box::from_parameters(side, side, side, 90, 90, 90);
+    tricell::NeighborSearch search;
+    search.build(box, x, with_cutoff(5));
+    EXPECT_EQ(search.info().backend, tricell::SearchBackend::dense);
+    EXPECT_FALSE(search.info().reduced_frame);
 }

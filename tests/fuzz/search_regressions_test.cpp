@@ -1,0 +1,105 @@
+// Inputs the search fuzzer (search_fuzzer.cpp) found failing, as plain tests that every build
+// runs: each case on every backend gives the brute-force oracle's pairs or a tricell::Error,
+// and returns (a hang shows as the ctest timeout). The first four failed before the backend
+// rewrite of the search (undefined behaviour, a hang, seconds of work for nothing); the last
+// was the oracle's own mistake.
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include <tricell/error.hpp>
+#include <tricell/neighbor_list.hpp>
+
+#include "support/brute_force.hpp"
+
+namespace {
+
+using tricell::Box;
+using tricell::NeighborOptions;
+using tricell::SearchBackend;
+
+struct Case {
+    const char* name;
+    Eigen::Matrix3d h; // lattice vectors as columns
+    tricell::Periodicity pbc;
+    std::vector<Eigen::Vector3d> x;
+    NeighborOptions options;
+};
+
+std::vector<Case> cases() {
+    std::vector<Case> out;
+    {
+        // The pair estimate was 0 * 0 / 0 = NaN (the sphere and the open-axis thickness both
+        // underflow) and was cast to size_t.
+        Case c{"tiny cutoff with open axes", 0.1 * Eigen::Matrix3d::Identity(), {}, {}, {}};
+        c.pbc.axes = {false, false, true};
+        c.x = {{0, 0, 0}, {0, 0, 0.05}};
+        c.options.cutoff = 1e-200;
+        out.push_back(c);
+    }
+    {
+        // The grid grew its cell size by 1.1 until the cells fit; a denormal size never grew.
+        Case c{"denormal cutoff", Eigen::Matrix3d::Identity(), {}, {{0.5, 0.5, 0.5}}, {}};
+        c.options.cutoff = 4.9406564584124654e-324;
+        out.push_back(c);
+    }
+    {
+        // No atoms: nothing stopped a stencil of (2 * 1000 / 5)^3 offsets.
+        Case c{"no atoms, cutoff 200 box lengths",
+               Eigen::Vector3d(5, 5, 5.98).asDiagonal(),
+               {},
+               {},
+               {}};
+        c.options.cutoff = 1000;
+        out.push_back(c);
+    }
+    {
+        // ~120 perpendicular widths in a skewed box searched without reduction took 10-30 s.
+        Case c{"skewed unreduced box, cutoff of many widths", Eigen::Matrix3d::Zero(), {}, {}, {}};
+        c.h << 5, 15, 0, 0, 1, 0, 0, 0, 10;
+        c.x = {{0, 0, 0}, {0, 0, 0}};
+        c.options.cutoff = 40.36;
+        c.options.half = true;
+        c.options.reduce_cell = false;
+        out.push_back(c);
+    }
+    {
+        // Coincident atoms are neighbours at d = 0 < 1e-300 (the oracle squared the cutoff).
+        Case c{"coincident atoms, tiny cutoff",
+               Eigen::Vector3d(5, 5, 0.7).asDiagonal(),
+               {},
+               std::vector<Eigen::Vector3d>(3, Eigen::Vector3d::Zero()),
+               {}};
+        c.options.cutoff = 1e-300;
+        out.push_back(c);
+    }
+    return out;
+}
+
+TEST(SearchRegressions, FuzzerFindsAgreeWithTheOracleOnEveryBackend) {
+    for (Case c : cases()) {
+        SCOPED_TRACE(c.name);
+        const Box box = Box::from_columns(c.h, c.pbc);
+        tricell::testing::PairMap expected =
+            tricell::testing::brute_force_pairs(box, c.x, c.options.cutoff);
+        if (c.options.half) {
+            expected = tricell::testing::canonical_half(expected);
+        }
+        c.options.quantities.vectors = true;
+        for (SearchBackend backend : {SearchBackend::automatic, SearchBackend::dense,
+                                      SearchBackend::linked, SearchBackend::hash}) {
+            SCOPED_TRACE(tricell::backend_name(backend));
+            c.options.backend = backend;
+            const tricell::NeighborList list = tricell::compute_neighbors(box, c.x, c.options);
+            const tricell::testing::PairMap found = tricell::testing::to_map(list);
+            ASSERT_EQ(found.size(), expected.size());
+            for (const auto& [key, value] : expected) {
+                ASSERT_EQ(found.count(key), 1u);
+                EXPECT_NEAR(found.at(key).distance, value.distance, 1e-9);
+            }
+        }
+    }
+}
+
+} // namespace
