@@ -348,6 +348,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     options.max_pairs = max_pairs;
     options.quantities.shifts = options.quantities.distances = options.quantities.vectors = true;
 
+    // Open core defect, skipped so that the fuzzer looks further: a denormal cutoff hangs the
+    // grid (grid.cpp, cells_along: the cell size grows by 1.1 until the cells fit, and 1.1 h
+    // rounds back to h for the smallest denormals). Input: known/search-hang-denormal-cutoff,
+    // and the disabled case in search_regressions_test.cpp. Remove this when that is fixed.
+    if (options.cutoff > 0 && options.cutoff < std::numeric_limits<double>::min()) {
+        return 0;
+    }
     // Speed, not correctness: a cutoff of ~100 perpendicular widths takes the search ~0.5 s
     // per backend under the sanitizers (tens of thousands of image offsets), too slow for a
     // fuzzer that wants thousands of inputs per second.
