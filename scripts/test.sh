@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # The whole test suite, from a fresh clone: installs what is missing, builds tricell twice
 # (optimised, and with AddressSanitizer + UndefinedBehaviorSanitizer), runs every test in
-# both, and checks formatting. Exit status non-zero if anything fails.
+# both, and checks formatting; then builds the libFuzzer harnesses with clang-14 (build-fuzz/),
+# replays their corpora and fuzzes each for a bounded time (tests/fuzz/README.md). Exit status
+# non-zero if anything fails.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -21,3 +23,7 @@ cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTRICELL_SANITIZE=ON
     -DTRICELL_BUILD_BENCHMARKS=OFF -DBUILD_SHARED_LIBS=ON
 cmake --build build-asan -j "$jobs"
 ctest --test-dir build-asan -j "$jobs" --output-on-failure
+
+echo "== fuzzers (build-fuzz/, clang-14, ASan + UBSan + libFuzzer)"
+bash scripts/fuzz-build.sh
+ctest --test-dir build-fuzz -L fuzz --output-on-failure

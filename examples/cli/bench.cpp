@@ -23,7 +23,8 @@ namespace {
 
 const char* const help =
     R"(usage: tricell bench FILE --cutoff R [--half] [--quantities ijSdD] [--repeat K]
-                     [--threads T] [--backend B] [--input-format cif|xyz|poscar]
+                     [--threads T] [--backend B] [--max-pairs N]
+                     [--input-format cif|xyz|poscar]
 
 Times tricell's neighbour list of FILE: one warm-up call, then K timed calls (default 10) into
 a reused list. Prints pairs, median_s, min_s, pairs_per_s, list_mb (the stored arrays),
@@ -39,6 +40,8 @@ Options:
   --repeat K          timed calls, K >= 1 (default 10)
   --threads T         threads, T >= 0, 0 = all hardware threads (default 1)
   --backend B         auto (default), dense, linked, hash or octree
+  --max-pairs N       refuse lists of more than N pairs before allocating them (default
+                      500000000; 0 = no limit)
   --input-format F    cif, xyz or poscar, instead of the guess from the file name
   -h, --help          this help
 )";
@@ -105,6 +108,7 @@ int run_bench(const std::vector<std::string>& args) {
                                arguments.value() + "'");
             }
             options.threads = int(t);
+        } else if (take_max_pairs(arguments, options.max_pairs)) {
         } else if (arguments.option("--backend")) {
             const std::string name = arguments.value();
             try {

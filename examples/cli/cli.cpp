@@ -191,6 +191,19 @@ bool take_input(Arguments& arguments, io::ReadOptions& read_options, std::string
     return false;
 }
 
+bool take_max_pairs(Arguments& arguments, std::size_t& max_pairs) {
+    if (!arguments.option("--max-pairs")) {
+        return false;
+    }
+    const double n = arguments.real();
+    if (!(n >= 0 && n <= 0x1p53) || n != std::floor(n)) {
+        arguments.fail("--max-pairs must be a whole number in [0, 2^53], got '" +
+                       arguments.value() + "'");
+    }
+    max_pairs = std::size_t(n);
+    return true;
+}
+
 void require_file(const Arguments& arguments, const std::string& file) {
     if (file.empty()) {
         arguments.fail("missing FILE");

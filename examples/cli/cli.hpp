@@ -57,6 +57,9 @@ io::Format input_format(const Arguments& arguments, const std::string& name);
 /// The arguments every command shares: consumes the current argument if it is
 /// --input-format F or the (first) positional FILE, and says whether it did.
 bool take_input(Arguments& arguments, io::ReadOptions& read_options, std::string& file);
+/// --max-pairs N (a whole number, 0 = no limit): consumes it into max_pairs and says whether
+/// it did. The library refuses a larger list before allocating it.
+bool take_max_pairs(Arguments& arguments, std::size_t& max_pairs);
 /// UsageError "missing FILE" when no FILE was given.
 void require_file(const Arguments& arguments, const std::string& file);
 
@@ -86,6 +89,10 @@ class Output {
     std::FILE* stream_ = nullptr;
     bool committed_ = false;
 };
+
+/// The whole command: args as after the program name ("neighbors", "x.cif", "--cutoff", "3").
+/// Prints errors as one line on stderr and returns the exit status (see dispatch.cpp).
+int run(const std::vector<std::string>& args);
 
 int run_neighbors(const std::vector<std::string>& args);
 int run_info(const std::vector<std::string>& args);

@@ -14,7 +14,8 @@ namespace tricell::cli {
 namespace {
 
 const char* const help =
-    R"(usage: tricell coordination FILE (--cutoff R | --bond A-B=R ...) [--input-format cif|xyz|poscar]
+    R"(usage: tricell coordination FILE (--cutoff R | --bond A-B=R ...) [--max-pairs N]
+                            [--input-format cif|xyz|poscar]
 
 For every atom, counts the neighbours j (periodic images included) at distance d < cutoff,
 where the cutoff of a pair of elements is the --bond value given for it, else --cutoff; a pair
@@ -27,6 +28,8 @@ coordination number and the shortest counted distance (nan when it has no neighb
 Options:
   --cutoff R          cutoff for every pair of elements not given by --bond (Angstrom)
   --bond A-B=R        cutoff for the elements A and B, e.g. --bond Si-O=1.8 (repeatable)
+  --max-pairs N       refuse a search of more than N pairs before allocating it (default
+                      500000000; 0 = no limit)
   --input-format F    cif, xyz or poscar, instead of the guess from the file name
   -h, --help          this help
 )";
@@ -71,6 +74,7 @@ int run_coordination(const std::vector<std::string>& args) {
             }
         } else if (arguments.option("--bond")) {
             options.bonds.push_back(parse_bond(arguments, arguments.value()));
+        } else if (take_max_pairs(arguments, options.max_pairs)) {
         } else if (!take_input(arguments, read_options, file)) {
             arguments.unknown();
         }

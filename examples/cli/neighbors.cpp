@@ -13,7 +13,7 @@ namespace {
 
 const char* const help =
     R"(usage: tricell neighbors FILE --cutoff R [--half] [--sorted] [--format tsv|csv|json]
-                         [--output PATH] [--input-format cif|xyz|poscar]
+                         [--output PATH] [--max-pairs N] [--input-format cif|xyz|poscar]
 
 Lists every pair (i, j, S) of atoms closer than R: D = x_j - x_i + H S with |D| < R, where x
 are the positions in the order the file gives them (for a CIF, the symmetry-expanded unit
@@ -27,6 +27,8 @@ Options:
   --sorted            sort by i, then j, then Sa, Sb, Sc (otherwise the order is unspecified)
   --format F          tsv (default), csv or json
   --output PATH       write to PATH, completely or not at all, instead of standard output
+  --max-pairs N       refuse lists of more than N pairs before allocating them (default
+                      500000000, about 14 GB; 0 = no limit)
   --input-format F    cif, xyz or poscar, instead of the guess from the file name
   -h, --help          this help
 
@@ -154,6 +156,7 @@ int run_neighbors(const std::vector<std::string>& args) {
             }
         } else if (arguments.option("--output")) {
             output = arguments.value();
+        } else if (take_max_pairs(arguments, options.max_pairs)) {
         } else if (!take_input(arguments, read_options, file)) {
             arguments.unknown();
         }

@@ -240,7 +240,7 @@ Box read_cell(BlockReader& reader) {
     try {
         return Box::from_parameters(p[0], p[1], p[2], p[3], p[4], p[5]);
     } catch (const Error& e) {
-        reader.fail(first_line, "invalid cell: ", e.what());
+        reader.fail(first_line, "invalid cell: ", one_line(e.what()));
     }
 }
 
@@ -260,6 +260,9 @@ Operator to_operator(const gemmi::Op& op) {
     }
     return out;
 }
+
+// Operators of the largest space groups (F m -3 m: 48 point operations x 4 centrings).
+constexpr std::size_t max_operators = 192;
 
 // Why gemmi's op is not a lattice symmetry operation, or empty.
 std::string check_operator(const gemmi::Op& op) {
@@ -297,6 +300,7 @@ std::vector<Operator> read_operators(BlockReader& reader, const Box& box) {
         reader.find({"_symmetry_equiv_pos_as_xyz", "_space_group_symop_operation_xyz",
                      "_space_group_symop.operation_xyz"});
     if (explicit_ops) {
+        std::vector<gemmi::Op> distinct; // translations wrapped into [0, 1)
         for (int row = 0; row < explicit_ops.length(); ++row) {
             const std::string text = cif::as_string(explicit_ops.at(row));
             const std::size_t line = reader.line(explicit_ops, row);
@@ -307,14 +311,27 @@ std::vector<Operator> read_operators(BlockReader& reader, const Box& box) {
                 }
                 op = gemmi::parse_triplet(text);
             } catch (const std::exception& e) {
-                reader.fail(line, "invalid symmetry operator ", quote(text), " (", e.what(),
-                            "), expected a triplet such as '-y, x-y, z+1/3'");
+                reader.fail(line, "invalid symmetry operator ", quote(text), " (",
+                            one_line(e.what()), "), expected a triplet such as '-y, x-y, z+1/3'");
             }
             const std::string problem = check_operator(op);
             if (!problem.empty()) {
                 reader.fail(line, "symmetry operator ", quote(text),
                             " is not a crystallographic operation: ", problem);
             }
+            // An operator listed twice adds nothing (its images would merge); more than 192
+            // distinct ones is no space group in any cell, and would make the expansion
+            // (rows x operators atoms, each compared with the row's other images) explode.
+            gemmi::Op wrapped = op;
+            wrapped.wrap();
+            if (std::find(distinct.begin(), distinct.end(), wrapped) != distinct.end()) {
+                continue;
+            }
+            if (distinct.size() == max_operators) {
+                reader.fail(line, "more than ", max_operators,
+                            " distinct symmetry operators, more than any space group has");
+            }
+            distinct.push_back(wrapped);
             ops.push_back(to_operator(op));
         }
         if (ops.empty()) {
@@ -333,8 +350,8 @@ std::vector<Operator> read_operators(BlockReader& reader, const Box& box) {
         try {
             group = gemmi::symops_from_hall(symbol.c_str());
         } catch (const std::exception& e) {
-            reader.fail(reader.line(hall, 0), "invalid Hall symbol ", quote(symbol), " (", e.what(),
-                        ")");
+            reader.fail(reader.line(hall, 0), "invalid Hall symbol ", quote(symbol), " (",
+                        one_line(e.what()), ")");
         }
     } else if (hm && !cif::is_null(hm.at(0))) {
         const std::string symbol = cif::as_string(hm.at(0));
@@ -402,7 +419,7 @@ Structure parse_cif(const std::string& text, const std::string& name, const Read
                                                  byte, std::max<std::size_t>(end - byte, 1)))) +
                       ", expected a tag (_name) with its value, loop_ with its tags, or data_NAME";
         }
-        tricell::detail::fail_parse(name, line, "CIF syntax error: ", message);
+        tricell::detail::fail_parse(name, line, "CIF syntax error: ", one_line(message));
     }
     if (doc.blocks.empty()) {
         tricell::detail::fail_parse(name, 0,
@@ -461,6 +478,12 @@ Structure parse_cif(const std::string& text, const std::string& name, const Read
         return (box.matrix() * d).squaredNorm() < merge_sq;
     };
 
+    const double bound = double(x.length()) * double(ops.size());
+    if (options.max_atoms != 0 && bound > double(options.max_atoms)) {
+        reader.fail(reader.line(x, 0), "the symmetry expansion of ", x.length(), " sites by ",
+                    ops.size(), " operators could give ", bound,
+                    " atoms, more than ReadOptions::max_atoms = ", options.max_atoms);
+    }
     for (int row = 0; row < x.length(); ++row) {
         const std::size_t line = reader.line(x, row);
         const std::string site_label =

@@ -96,6 +96,7 @@ std::vector<Coordination> coordination(const Structure& structure,
     neighbor_options.quantities.shifts = false;
     neighbor_options.quantities.distances = true;
     neighbor_options.quantities.vectors = false;
+    neighbor_options.max_pairs = options.max_pairs;
     const NeighborList list =
         compute_neighbors(structure.box, structure.positions, neighbor_options);
     for (std::size_t p = 0; p < list.size(); ++p) {

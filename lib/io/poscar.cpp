@@ -34,7 +34,8 @@ std::string describe(const std::vector<std::string_view>& words) {
 
 } // namespace
 
-Structure parse_poscar(const std::string& text, const std::string& name) {
+Structure parse_poscar(const std::string& text, const std::string& name,
+                       const ReadOptions& options) {
     if (split_words(text).empty()) {
         tricell::detail::fail_parse(name, 0,
                                     "file is empty, expected a POSCAR (comment, scale factor, "
@@ -131,6 +132,10 @@ Structure parse_poscar(const std::string& text, const std::string& name) {
         if (total > text.size()) { // each atom needs a line: cannot be in this file
             lines.fail(line, "atom count ", count, " is larger than the file can hold");
         }
+    }
+    if (options.max_atoms != 0 && total > options.max_atoms) {
+        lines.fail(line, "the file has ", total,
+                   " atoms, more than ReadOptions::max_atoms = ", options.max_atoms);
     }
 
     // Optional "Selective dynamics", then the coordinate mode.

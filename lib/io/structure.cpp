@@ -91,10 +91,10 @@ Structure parse_structure(const std::string& text, const std::string& name,
         structure = detail::parse_cif(text, name, options);
         break;
     case Format::xyz:
-        structure = detail::parse_xyz(text, name);
+        structure = detail::parse_xyz(text, name, options);
         break;
     case Format::poscar:
-        structure = detail::parse_poscar(text, name);
+        structure = detail::parse_poscar(text, name, options);
         break;
     }
     structure.source = name;

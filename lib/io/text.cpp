@@ -142,4 +142,14 @@ std::string quote(std::string_view token) {
     return out + "'";
 }
 
+std::string one_line(std::string_view message) {
+    std::string out(message);
+    for (char& c : out) {
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
+            c = ' ';
+        }
+    }
+    return out;
+}
+
 } // namespace tricell::io::detail

@@ -58,9 +58,14 @@ std::string lower(std::string_view text);
 /// Shortens a token for an error message (at most ~40 characters).
 std::string quote(std::string_view token);
 
+/// A message from another library (gemmi) made fit for one line of ours: control characters
+/// (a newline, a tab, a NUL read from the file) become spaces.
+std::string one_line(std::string_view message);
+
 /// Per-format readers on the text of a file called `name`.
 Structure parse_cif(const std::string& text, const std::string& name, const ReadOptions& options);
-Structure parse_poscar(const std::string& text, const std::string& name);
-Structure parse_xyz(const std::string& text, const std::string& name);
+Structure parse_poscar(const std::string& text, const std::string& name,
+                       const ReadOptions& options);
+Structure parse_xyz(const std::string& text, const std::string& name, const ReadOptions& options);
 
 } // namespace tricell::io::detail

@@ -158,7 +158,7 @@ Columns parse_properties(const Lines& lines, std::size_t line, const std::string
 
 } // namespace
 
-Structure parse_xyz(const std::string& text, const std::string& name) {
+Structure parse_xyz(const std::string& text, const std::string& name, const ReadOptions& options) {
     if (split_words(text).empty()) {
         tricell::detail::fail_parse(name, 0,
                                     "file is empty, expected an XYZ file (number of atoms, "
@@ -171,6 +171,10 @@ Structure parse_xyz(const std::string& text, const std::string& name) {
     if (first.empty() || !parse_integer(first[0], count) || count < 0) {
         lines.fail(line, "expected the number of atoms (an integer >= 0), got ",
                    first.empty() ? std::string("an empty line") : quote(first[0]));
+    }
+    if (options.max_atoms != 0 && std::size_t(count) > options.max_atoms) {
+        lines.fail(line, "the file has ", count,
+                   " atoms, more than ReadOptions::max_atoms = ", options.max_atoms);
     }
     const std::size_t comment_line = lines.number();
     const std::vector<KeyValue> pairs = parse_key_values(lines.next("the comment line"));

@@ -6,6 +6,7 @@
 #include <sys/stat.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -325,6 +326,14 @@ const BadCommand bad_commands[] = {
     {"coordination quartz.cif --bond Si-O=two", 2,
      "tricell: coordination: --bond expects A-B=R with a number R, got 'Si-O=two' (see tricell "
      "coordination --help)\n"},
+    {"neighbors quartz.cif --cutoff 3 --max-pairs -1", 2,
+     "tricell: neighbors: --max-pairs must be a whole number in [0, 2^53], got '-1' (see tricell "
+     "neighbors --help)\n"},
+    {"coordination quartz.cif --cutoff 3 --max-pairs 2.5", 2,
+     "tricell: coordination: --max-pairs must be a whole number in [0, 2^53], got '2.5' (see "
+     "tricell coordination --help)\n"},
+    {"bench quartz.cif --cutoff 3 --max-pairs=", 2,
+     "tricell: bench: --max-pairs needs a value (see tricell bench --help)\n"},
     {"neighbors quartz.cif --cutoff -1", 1, "tricell: cutoff must be > 0 (got -1)\n"},
     {"neighbors quartz.cif --cutoff 0", 1, "tricell: cutoff must be > 0 (got 0)\n"},
     {"info quartz.cif --symprec -1", 1, "tricell: symprec must be > 0 (got -1)\n"},
@@ -342,6 +351,21 @@ TEST_F(Cli, UsageErrorsExit2AndValueErrorsExit1) {
         EXPECT_EQ(r.out, "");
         EXPECT_EQ(r.err, bad.message);
     }
+}
+
+// A pair limit refuses the list before it is computed, and names the limit; 0 lifts it.
+TEST_F(Cli, MaxPairsRefusesLargerListsWithStatus1) {
+    for (const char* command : {"neighbors", "coordination", "bench"}) {
+        SCOPED_TRACE(command);
+        const Result refused = run(std::string(command) + " quartz.cif --cutoff 3 --max-pairs 10");
+        EXPECT_EQ(refused.status, 1);
+        EXPECT_EQ(refused.out, "");
+        EXPECT_NE(refused.err.find("max_pairs = 10"), std::string::npos) << refused.err;
+        EXPECT_EQ(std::count(refused.err.begin(), refused.err.end(), '\n'), 1);
+    }
+    EXPECT_EQ(run("neighbors quartz.cif --cutoff 3 --max-pairs 1000").status, 0);
+    EXPECT_EQ(run("coordination quartz.cif --cutoff 3 --max-pairs 0").status, 0);
+    EXPECT_EQ(run("bench quartz.cif --cutoff 3 --max-pairs 0 --repeat 1").status, 0);
 }
 
 TEST_F(Cli, NoArgumentsPrintsUsageAndExits2) {

@@ -32,6 +32,24 @@ TEST(Coordination, QuartzWithOneCutoff) {
     }
 }
 
+// A cutoff whose list would not fit in max_pairs is refused by the search before it allocates.
+TEST(Coordination, MaxPairsRefusesAHugeSearch) {
+    CoordinationOptions options;
+    options.cutoff = 1e4; // ~4e12 pairs for 9 atoms in 113 A^3
+    try {
+        tricell::io::coordination(quartz(), options);
+        ADD_FAILURE() << "expected InvalidArgument";
+    } catch (const tricell::InvalidArgument& e) {
+        EXPECT_NE(std::string(e.what()).find("cutoff 10000 would give about"), std::string::npos)
+            << e.what();
+    }
+    options.cutoff = 3;
+    options.max_pairs = 50;
+    EXPECT_THROW(tricell::io::coordination(quartz(), options), tricell::InvalidArgument);
+    options.max_pairs = 0; // no limit
+    EXPECT_EQ(tricell::io::coordination(quartz(), options).size(), 9u);
+}
+
 TEST(Coordination, PairCutoffsOverrideTheDefault) {
     const tricell::io::Structure s = quartz();
     CoordinationOptions options;

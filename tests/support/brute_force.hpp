@@ -58,7 +58,9 @@ inline PairMap brute_force_pairs(const Box& box, const std::vector<Eigen::Vector
                         }
                         const Eigen::Vector3d d = x[j] - x[i] + h * Eigen::Vector3d(a, b, c);
                         const double d_sq = d.squaredNorm();
-                        if (d_sq < cutoff * cutoff) {
+                        // sqrt(d_sq) < cutoff, not d_sq < cutoff^2: the square of a tiny
+                        // cutoff underflows to 0 (coincident atoms at d = 0 are neighbours).
+                        if (std::sqrt(d_sq) < cutoff) {
                             out[PairKey{i, j, a, b, c}] = PairValue{std::sqrt(d_sq), d};
                         }
                     }

@@ -15,6 +15,7 @@
 
 #include "tricell/io/export.hpp"
 #include "tricell/io/structure.hpp"
+#include "tricell/neighbor_list.hpp"
 
 namespace tricell::io {
 
@@ -30,6 +31,9 @@ struct TRICELL_IO_API CoordinationOptions {
     double cutoff = 0;
     /// Per-element-pair cutoffs. Element symbols in any case ("si" is "Si").
     std::vector<BondCutoff> bonds;
+    /// Refuse (InvalidArgument, before the search allocates) when the neighbour list of the
+    /// largest cutoff would hold more pairs than this; 0 means no limit (NeighborOptions).
+    std::size_t max_pairs = NeighborOptions().max_pairs;
 
     /// Throws InvalidArgument: a cutoff not finite or < 0 (0 only for the default), an unknown
     /// element, a pair listed twice, or no cutoff at all.

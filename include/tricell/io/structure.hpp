@@ -67,6 +67,10 @@ struct TRICELL_IO_API ReadOptions {
     /// four decimals (such as 0.3333 for 1/3) in cells up to ~50 Angstrom, and is far below
     /// any distance between distinct atoms. Must be finite and >= 0.
     double merge_distance = 0.01;
+    /// Refuse (ParseError, before reading the atoms) a file with more atoms than this: a POSCAR
+    /// or XYZ count, or a CIF's sites times its symmetry operators. The default, 10^7 atoms,
+    /// is about 1 GB of Structure. 0 means no limit.
+    std::size_t max_atoms = 10'000'000;
 
     /// Throws InvalidArgument naming the offending field and value.
     void validate() const;
