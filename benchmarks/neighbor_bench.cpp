@@ -51,14 +51,14 @@ System random_triclinic(int atoms) {
     return sys;
 }
 
-// range(0): size parameter; range(1): half (0/1); range(2): cell list (0 sorted, 1 linked)
+// range(0): size parameter; range(1): half (0/1); range(2): backend (0 dense, 1 linked)
 template <System (*Make)(int), int Cutoff> void bm_stored(benchmark::State& state) {
     const System sys = Make(static_cast<int>(state.range(0)));
     tricell::NeighborOptions options;
     options.cutoff = Cutoff;
     options.half = state.range(1) != 0;
-    options.cell_list =
-        state.range(2) == 0 ? tricell::CellListKind::sorted : tricell::CellListKind::linked;
+    options.backend =
+        state.range(2) == 0 ? tricell::SearchBackend::dense : tricell::SearchBackend::linked;
     tricell::NeighborList list;
     for (auto _ : state) {
         tricell::compute_neighbors(sys.box, sys.positions, options, list);

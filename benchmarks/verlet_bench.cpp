@@ -20,6 +20,7 @@
 #include <benchmark/benchmark.h>
 
 #include "lj_system.hpp"
+#include <tricell/cost_model.hpp>
 #include <tricell/verlet.hpp>
 
 namespace {
@@ -56,11 +57,11 @@ template <class F> double best_seconds(int repeats, F&& f) {
 
 tricell::VerletOptions list_options(double skin, double cells_per_cutoff) {
     tricell::VerletOptions o;
-    o.cutoff = cutoff;
+    o.neighbors.cutoff = cutoff;
     o.skin = skin;
-    o.half = true;
-    o.quantities = tricell::Quantities{false, false, true};
-    o.cells_per_cutoff = cells_per_cutoff;
+    o.neighbors.half = true;
+    o.neighbors.quantities = tricell::Quantities{false, false, true};
+    o.neighbors.cells_per_cutoff = cells_per_cutoff;
     return o;
 }
 

@@ -1,5 +1,6 @@
 #include "tricell/grid.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -21,11 +22,15 @@ void GridOptions::validate() const {
 
 namespace {
 
+// Most cells along one axis, whatever max_cells allows: keeps coordinates in an int and the
+// flat index of three axes (2^60) in 64 bits.
+constexpr double max_cells_per_axis = double(1 << 20);
+
 // Cells that fit along an axis of real thickness `thickness` with target size h, at most
 // `limit` (so that cell counts stay representable).
 int cells_along(double thickness, double h, double limit) {
     const double n = std::floor(thickness / h);
-    return n < 1 ? 1 : static_cast<int>(std::min(n, limit));
+    return n < 1 ? 1 : static_cast<int>(std::min({n, limit, max_cells_per_axis}));
 }
 
 } // namespace

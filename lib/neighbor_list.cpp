@@ -1,16 +1,44 @@
+// The shared part of every search (see include/tricell/neighbor_list.hpp): validation, the
+// search frame and the wrap, the pair-count estimate, the choice of backend, threads with the
+// ordered merge, sorting and the map of shifts back to the caller's lattice vectors.
 #include "tricell/neighbor_list.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <exception>
 #include <limits>
+#include <map>
 #include <numeric>
 #include <thread>
 
+#include "backends/backend.hpp"
 #include "detail/lattice_reduction.hpp"
+#include "detail/list_writer.hpp"
+#include "tricell/cost_model.hpp"
 #include "tricell/error.hpp"
 
 namespace tricell {
+
+namespace detail {
+
+/// Everything a built search holds.
+struct SearchState {
+    NeighborOptions options;
+    Eigen::Matrix3d h = Eigen::Matrix3d::Identity(); // of the search frame
+    // Shifts in the search frame map to the caller's as S = to_caller * S' (identity unless
+    // the cell was reduced).
+    Eigen::Matrix3i to_caller = Eigen::Matrix3i::Identity();
+    bool reduced_frame = false;
+    double search_radius = 0;
+    double cutoff_sq = 0; // the scan's threshold (of the largest cutoff)
+    std::size_t atom_count = 0;
+    double estimated_pairs = 0;
+    CutoffRule rule;
+    AtomTable atoms;
+    std::unique_ptr<Backend> backend; // null when no pair can count (all radii zero, ...)
+};
+
+} // namespace detail
 
 namespace {
 
@@ -18,6 +46,8 @@ constexpr double pi = 3.14159265358979323846;
 // The grid and stencil are built for a radius this much larger than the cutoff, so rounding
 // in fractional coordinates can never push a pair just inside the cutoff out of the stencil.
 constexpr double search_margin = 1e-9;
+
+using detail::ListWriter;
 
 // Reorders v in place so that v[k] becomes old v[perm[k]], for `width` values per pair.
 template <class T>
@@ -56,14 +86,80 @@ template <class Task> void run_in_threads(std::size_t count, Task&& task) {
     }
 }
 
+[[noreturn]] void too_many_pairs(std::size_t limit) {
+    detail::fail<InvalidArgument>("the neighbour list has more than max_pairs = ", limit,
+                                  " pairs; raise NeighborOptions::max_pairs to allow it");
+}
+
 } // namespace
+
+const char* backend_name(SearchBackend backend) {
+    switch (backend) {
+    case SearchBackend::automatic:
+        return "auto";
+    case SearchBackend::dense:
+        return "dense";
+    case SearchBackend::linked:
+        return "linked";
+    case SearchBackend::hash:
+        return "hash";
+    case SearchBackend::octree:
+        return "octree";
+    }
+    return "unknown";
+}
+
+SearchBackend parse_backend(const std::string& name) {
+    for (const SearchBackend b :
+         {SearchBackend::automatic, SearchBackend::dense, SearchBackend::linked,
+          SearchBackend::hash, SearchBackend::octree}) {
+        if (name == backend_name(b)) {
+            return b;
+        }
+    }
+    detail::fail<InvalidArgument>("unknown search backend '", name,
+                                  "' (expected auto, dense, linked, hash or octree)");
+}
 
 void NeighborOptions::validate() const {
     if (!std::isfinite(cutoff)) {
         detail::fail<InvalidArgument>("cutoff must be finite (got ", cutoff, ")");
     }
-    if (!(cutoff > 0)) {
+    if (!radii.empty() && !species_cutoffs.empty()) {
+        detail::fail<InvalidArgument>("set radii or species_cutoffs, not both");
+    }
+    if (variable_cutoff()) {
+        if (cutoff != 0) {
+            detail::fail<InvalidArgument>("cutoff must be 0 when ",
+                                          radii.empty() ? "species_cutoffs" : "radii",
+                                          " decide which pairs count (got ", cutoff, ")");
+        }
+    } else if (!(cutoff > 0)) {
         detail::fail<InvalidArgument>("cutoff must be > 0 (got ", cutoff, ")");
+    }
+    for (std::size_t k = 0; k < radii.size(); ++k) {
+        if (!(std::isfinite(radii[k]) && radii[k] >= 0)) {
+            detail::fail<InvalidArgument>("radii[", k, "] must be finite and >= 0 (got ", radii[k],
+                                          ")");
+        }
+    }
+    if (!species.empty() && species_cutoffs.empty()) {
+        detail::fail<InvalidArgument>("species is set but species_cutoffs is empty");
+    }
+    std::map<std::pair<std::int32_t, std::int32_t>, double> seen;
+    for (std::size_t k = 0; k < species_cutoffs.size(); ++k) {
+        const SpeciesCutoff& e = species_cutoffs[k];
+        if (!(std::isfinite(e.cutoff) && e.cutoff > 0)) {
+            detail::fail<InvalidArgument>("species_cutoffs[", k, "] (species ", e.a, "-", e.b,
+                                          ") must be finite and > 0 (got ", e.cutoff, ")");
+        }
+        const auto key = std::minmax(e.a, e.b);
+        const auto [it, fresh] = seen.emplace(key, e.cutoff);
+        if (!fresh && it->second != e.cutoff) {
+            detail::fail<InvalidArgument>("species pair ", e.a, "-", e.b,
+                                          " has two cutoffs in species_cutoffs (", it->second,
+                                          " and ", e.cutoff, ")");
+        }
     }
     if (!(std::isfinite(cells_per_cutoff) && cells_per_cutoff >= 1)) {
         detail::fail<InvalidArgument>("cells_per_cutoff must be >= 1 (got ", cells_per_cutoff, ")");
@@ -73,6 +169,20 @@ void NeighborOptions::validate() const {
     }
     if (max_cells > (std::size_t(1) << 31)) {
         detail::fail<InvalidArgument>("max_cells must be at most 2^31 (got ", max_cells, ")");
+    }
+    if (hash_table_size > (std::size_t(1) << 31)) {
+        detail::fail<InvalidArgument>("hash_table_size must be at most 2^31 (got ", hash_table_size,
+                                      ")");
+    }
+    if (leaf_size > (std::size_t(1) << 20)) {
+        detail::fail<InvalidArgument>("leaf_size must be at most 2^20 (got ", leaf_size, ")");
+    }
+    if (backend != SearchBackend::automatic && backend != SearchBackend::dense &&
+        backend != SearchBackend::linked && backend != SearchBackend::hash &&
+        backend != SearchBackend::octree) {
+        detail::fail<InvalidArgument>("backend must be one of auto, dense, linked, hash, octree "
+                                      "(got the value ",
+                                      static_cast<int>(backend), ")");
     }
 }
 
@@ -114,15 +224,53 @@ Box search_frame(const Box& box, bool allow_reduction, Eigen::Matrix3i& transfor
     return candidate;
 }
 
+// The backend for `automatic`: the dense grid when the cells the cutoff asks for fit under its
+// cap, the compact hash otherwise (cost_model.hpp).
+SearchBackend automatic_backend(const Box& box, const Eigen::Vector3d& lower,
+                                const Eigen::Vector3d& upper, double search_radius,
+                                const NeighborOptions& options, std::size_t n) {
+    const double h = search_radius / options.cells_per_cutoff;
+    double cells = 1;
+    for (int k = 0; k < 3; ++k) {
+        const double span = box.periodic(k) ? 1.0 : std::max(upper[k] - lower[k], 0.0);
+        cells *= std::max(1.0, std::floor(span * box.perpendicular_widths()[k] / h));
+    }
+    const double cap = options.max_cells != 0 ? double(options.max_cells) : 4.0 * double(n) + 64;
+    return choose_grid_backend(cells, cap);
+}
+
 } // namespace
+
+namespace detail {
+std::unique_ptr<Backend> make_dense_backend();
+std::unique_ptr<Backend> make_linked_backend();
+std::unique_ptr<Backend> make_hash_backend();
+std::unique_ptr<Backend> make_octree_backend();
+
+std::unique_ptr<Backend> make_backend(SearchBackend kind) {
+    switch (kind) {
+    case SearchBackend::linked:
+        return make_linked_backend();
+    case SearchBackend::hash:
+        return make_hash_backend();
+    case SearchBackend::octree:
+        return make_octree_backend();
+    default:
+        return make_dense_backend();
+    }
+}
+} // namespace detail
+
+NeighborSearch::NeighborSearch() = default;
+NeighborSearch::~NeighborSearch() = default;
+NeighborSearch::NeighborSearch(NeighborSearch&&) noexcept = default;
+NeighborSearch& NeighborSearch::operator=(NeighborSearch&&) noexcept = default;
 
 void NeighborSearch::build(const Box& caller_box, PointsView positions,
                            const NeighborOptions& options) {
     // Until this build succeeds the object holds no usable search (a failed build must not
-    // leave a grid of one configuration with the cell lists of another).
-    built_ = false;
-    sorted_ = SortedCellList();
-    linked_ = LinkedCellList();
+    // leave the structure of one configuration with the atoms of another).
+    std::unique_ptr<detail::SearchState> state = std::move(state_);
     options.validate();
     const std::size_t n = positions.size();
     if (n >= std::size_t(std::numeric_limits<std::int32_t>::max())) {
@@ -139,17 +287,24 @@ void NeighborSearch::build(const Box& caller_box, PointsView positions,
                                           r.y(), ", ", r.z(), ")");
         }
     }
-    options_ = options;
-    const Box box = search_frame(caller_box, options.reduce_cell, to_caller_);
-    reduced_frame_ = to_caller_ != Eigen::Matrix3i::Identity();
-    h_ = box.matrix();
-    cutoff_sq_ = detail::strict_threshold_sq(options.cutoff);
-    atom_count_ = n;
-    const double search_radius = options.cutoff * (1 + search_margin);
+    if (!state) {
+        state = std::make_unique<detail::SearchState>();
+    }
+    detail::SearchState& s = *state;
+    s.backend.reset();
+    s.rule.set(options, n);
+    s.options = options;
+    const Box box = search_frame(caller_box, options.reduce_cell, s.to_caller);
+    s.reduced_frame = s.to_caller != Eigen::Matrix3i::Identity();
+    s.h = box.matrix();
+    s.atom_count = n;
+    s.estimated_pairs = 0;
+    const double cutoff = s.rule.max_cutoff();
+    s.search_radius = cutoff * (1 + search_margin);
 
     // Wrap into the box along periodic axes, remembering the image: x = wrapped + H image.
     std::vector<Eigen::Vector3d> fractional(n);
-    image_.assign(3 * n, 0);
+    std::vector<std::int32_t> image(3 * n, 0);
     Eigen::Vector3d lower = Eigen::Vector3d::Zero(), upper = Eigen::Vector3d::Zero();
     for (std::size_t i = 0; i < n; ++i) {
         WrappedFractional w;
@@ -160,7 +315,7 @@ void NeighborSearch::build(const Box& caller_box, PointsView positions,
         }
         fractional[i] = w.wrapped;
         for (int k = 0; k < 3; ++k) {
-            image_[3 * i + std::size_t(k)] = w.image[k];
+            image[3 * i + std::size_t(k)] = w.image[k];
         }
         if (i == 0) {
             lower = upper = w.wrapped;
@@ -169,196 +324,70 @@ void NeighborSearch::build(const Box& caller_box, PointsView positions,
             upper = upper.cwiseMax(w.wrapped);
         }
     }
-
-    GridOptions grid_options;
-    grid_options.search_radius = search_radius;
-    grid_options.cells_per_cutoff = options.cells_per_cutoff;
-    grid_options.max_cells = options.max_cells != 0 ? options.max_cells : 4 * n + 64;
-    grid_ = CellGrid(box, grid_options, lower, upper);
+    if (!(cutoff > 0) || n == 0) {
+        s.atoms = detail::AtomTable();
+        state_ = std::move(state); // no pair can count: an empty search
+        return;
+    }
+    s.cutoff_sq = detail::strict_threshold_sq(cutoff);
 
     // Expected pairs for a uniform density over the region the atoms occupy (an open axis
     // counts as at least one cutoff thick). Checked before anything large is allocated.
     double volume = box.volume();
     for (int k = 0; k < 3; ++k) {
         if (!box.periodic(k)) {
-            volume *= std::max(upper[k] - lower[k], options.cutoff / box.perpendicular_widths()[k]);
+            volume *= std::max(upper[k] - lower[k], cutoff / box.perpendicular_widths()[k]);
         }
     }
-    const double sphere = 4.0 / 3.0 * pi * std::pow(options.cutoff, 3);
-    estimated_pairs_ = double(n) * double(n) * sphere / volume * (options.half ? 0.5 : 1.0);
-    if (options.max_pairs != 0 && estimated_pairs_ > double(options.max_pairs)) {
+    const double sphere = 4.0 / 3.0 * pi * std::pow(cutoff, 3);
+    s.estimated_pairs = double(n) * double(n) * sphere / volume * (options.half ? 0.5 : 1.0);
+    if (options.max_pairs != 0 && s.estimated_pairs > double(options.max_pairs)) {
         detail::fail<InvalidArgument>(
-            "cutoff ", options.cutoff, " would give about ", estimated_pairs_, " pairs for ", n,
+            "cutoff ", cutoff, " would give about ", s.estimated_pairs, " pairs for ", n,
             " atoms (estimated from the density), more than max_pairs = ", options.max_pairs,
             "; raise NeighborOptions::max_pairs to allow it");
     }
 
-    // Exact pruning solves a small quadratic problem per boundary offset (~1000 instructions);
-    // worth it only when an offset leads to more distance tests than that, about N^2 / C / 5.
-    const bool exact_pruning = double(n) * double(n) / double(grid_.cell_count()) > 200;
-    stencil_ = options.half ? Stencil::half(grid_, box, search_radius, exact_pruning)
-                            : Stencil::full(grid_, box, search_radius, exact_pruning);
-    // Rows of the stencil: for each (da, db), the hull of its dc (a superset of the kept
-    // offsets is always correct; in practice the kept dc already form an interval).
-    rows_.clear();
-    for (const CellOffset& d : stencil_.offsets()) {
-        auto row = std::find_if(rows_.begin(), rows_.end(),
-                                [&](const StencilRow& r) { return r.da == d[0] && r.db == d[1]; });
-        if (row == rows_.end()) {
-            rows_.push_back(StencilRow{d[0], d[1], d[2], d[2]});
-        } else {
-            row->dc_lo = std::min(row->dc_lo, d[2]);
-            row->dc_hi = std::max(row->dc_hi, d[2]);
+    SearchBackend kind = options.backend;
+    if (kind == SearchBackend::automatic) {
+        kind = automatic_backend(box, lower, upper, s.search_radius, options, n);
+    }
+    s.backend = detail::make_backend(kind);
+    std::vector<std::uint32_t> order;
+    s.backend->bin(detail::BinningInput{box, fractional, lower, upper, s.search_radius, options},
+                   order);
+
+    // Wrapped Cartesian positions, x - H image (exactly x for atoms already in the box), in the
+    // backend's order.
+    detail::AtomTable& atoms = s.atoms;
+    atoms.x.resize(n);
+    atoms.y.resize(n);
+    atoms.z.resize(n);
+    atoms.image.resize(3 * n);
+    atoms.index = std::move(order);
+    for (std::size_t k = 0; k < n; ++k) {
+        const std::size_t i = atoms.index[k];
+        const Eigen::Vector3d img(image[3 * i], image[3 * i + 1], image[3 * i + 2]);
+        const Eigen::Vector3d r = Eigen::Vector3d(positions[i]) - s.h * img;
+        atoms.x[k] = r.x();
+        atoms.y[k] = r.y();
+        atoms.z[k] = r.z();
+        for (std::size_t a = 0; a < 3; ++a) {
+            atoms.image[3 * k + a] = image[3 * i + a];
         }
     }
-
-    // Neighbour-cell tables per axis.
-    for (int k = 0; k < 3; ++k) {
-        const int cells = grid_.dims()[std::size_t(k)];
-        const int reach = grid_.reach()[std::size_t(k)];
-        neighbor_cell_[k].resize(std::size_t(cells + 2 * reach));
-        neighbor_shift_[k].resize(std::size_t(cells + 2 * reach));
-        for (int t = -reach; t < cells + reach; ++t) {
-            const std::size_t slot = std::size_t(t + reach);
-            if (box.periodic(k)) {
-                neighbor_cell_[k][slot] = floor_mod(t, cells);
-                neighbor_shift_[k][slot] = floor_div(t, cells);
-            } else {
-                neighbor_cell_[k][slot] = (t >= 0 && t < cells) ? t : -1;
-                neighbor_shift_[k][slot] = 0;
-            }
-        }
-    }
-
-    std::vector<std::uint32_t> cell_of(n);
-    for (std::size_t i = 0; i < n; ++i) {
-        cell_of[i] = static_cast<std::uint32_t>(grid_.cell_of(fractional[i]));
-    }
-    // Wrapped Cartesian positions, x - H image (exactly x for atoms already in the box).
-    wrapped_.resize(3 * n);
-    for (std::size_t i = 0; i < n; ++i) {
-        const Eigen::Vector3d img(image_[3 * i], image_[3 * i + 1], image_[3 * i + 2]);
-        const Eigen::Vector3d r = Eigen::Vector3d(positions[i]) - h_ * img;
-        wrapped_[3 * i] = r.x();
-        wrapped_[3 * i + 1] = r.y();
-        wrapped_[3 * i + 2] = r.z();
-    }
-
-    if (options.cell_list == CellListKind::sorted) {
-        sorted_.build(cell_of, grid_.cell_count());
-        x_.resize(n);
-        y_.resize(n);
-        z_.resize(n);
-        sorted_image_.resize(3 * n);
-        for (std::size_t k = 0; k < n; ++k) {
-            const std::size_t i = sorted_.original(k);
-            x_[k] = wrapped_[3 * i];
-            y_[k] = wrapped_[3 * i + 1];
-            z_[k] = wrapped_[3 * i + 2];
-            for (std::size_t a = 0; a < 3; ++a) {
-                sorted_image_[3 * k + a] = image_[3 * i + a];
-            }
-        }
-        linked_ = LinkedCellList();
-    } else {
-        linked_.build(cell_of, grid_.cell_count());
-        sorted_ = SortedCellList();
-    }
-    built_ = true;
+    state_ = std::move(state);
 }
 
 namespace {
 
-// Appends pairs to the arrays of a NeighborList through raw pointers, growing them
-// geometrically (a push_back per field would re-check capacity five times per pair). Refuses to
-// grow past `limit` pairs (0: no limit).
-class PairSink {
-  public:
-    PairSink(PairArray<std::uint32_t>& i, PairArray<std::uint32_t>& j,
-             PairArray<std::int32_t>* shifts, PairArray<double>* distances,
-             PairArray<double>* vectors, std::size_t limit, std::size_t initial)
-        : i_(i), j_(j), shifts_(shifts), distances_(distances), vectors_(vectors), limit_(limit) {
-        resize(limit_ != 0 ? std::min(initial, limit_) : initial);
-    }
-
-    void add(std::uint32_t i, std::uint32_t j, int sa, int sb, int sc, double dx, double dy,
-             double dz, double d_sq) {
-        if (size_ == capacity_) {
-            grow();
-        }
-        pi_[size_] = i;
-        pj_[size_] = j;
-        if (ps_ != nullptr) {
-            ps_[3 * size_] = sa;
-            ps_[3 * size_ + 1] = sb;
-            ps_[3 * size_ + 2] = sc;
-        }
-        if (pd_ != nullptr) {
-            pd_[size_] = std::sqrt(d_sq);
-        }
-        if (pv_ != nullptr) {
-            pv_[3 * size_] = dx;
-            pv_[3 * size_ + 1] = dy;
-            pv_[3 * size_ + 2] = dz;
-        }
-        ++size_;
-    }
-
-    std::size_t size() const { return size_; }
-    /// Trims the arrays to the pairs actually added.
-    void finish() { resize(size_); }
-
-  private:
-    void grow() {
-        if (limit_ != 0 && capacity_ >= limit_) {
-            detail::fail<InvalidArgument>("the neighbour list has more than max_pairs = ", limit_,
-                                          " pairs; raise NeighborOptions::max_pairs to allow it");
-        }
-        std::size_t next = std::max<std::size_t>(1024, capacity_ * 2);
-        if (limit_ != 0) {
-            next = std::min(next, limit_);
-        }
-        resize(next);
-    }
-
-    void resize(std::size_t capacity) {
-        capacity_ = capacity;
-        i_.resize(capacity);
-        j_.resize(capacity);
-        pi_ = i_.data();
-        pj_ = j_.data();
-        if (shifts_ != nullptr) {
-            shifts_->resize(3 * capacity);
-            ps_ = shifts_->data();
-        }
-        if (distances_ != nullptr) {
-            distances_->resize(capacity);
-            pd_ = distances_->data();
-        }
-        if (vectors_ != nullptr) {
-            vectors_->resize(3 * capacity);
-            pv_ = vectors_->data();
-        }
-    }
-
-    PairArray<std::uint32_t>& i_;
-    PairArray<std::uint32_t>& j_;
-    PairArray<std::int32_t>* shifts_;
-    PairArray<double>* distances_;
-    PairArray<double>* vectors_;
-    std::uint32_t* pi_ = nullptr;
-    std::uint32_t* pj_ = nullptr;
-    std::int32_t* ps_ = nullptr;
-    double* pd_ = nullptr;
-    double* pv_ = nullptr;
-    std::size_t size_ = 0, capacity_ = 0, limit_ = 0;
-};
-
 // Sorts a list by i, then j, then S (counting sort by i, then each atom's pairs by (j, S)) and
 // fills its CSR offsets.
-void sort_pairs(PairArray<std::uint32_t>& is, PairArray<std::uint32_t>& js,
-                PairArray<std::int32_t>& ss, PairArray<double>& ds, PairArray<double>& vs,
-                std::vector<std::size_t>& offsets, std::size_t atom_count) {
+void sort_pairs(NeighborList& list, std::size_t atom_count) {
+    PairArray<std::uint32_t>& is = ListWriter::i(list);
+    PairArray<std::uint32_t>& js = ListWriter::j(list);
+    PairArray<std::int32_t>& ss = ListWriter::shifts(list);
+    std::vector<std::size_t>& offsets = ListWriter::offsets(list);
     const std::size_t pairs = is.size();
     offsets.assign(atom_count + 1, 0);
     for (const std::uint32_t i : is) {
@@ -388,89 +417,115 @@ void sort_pairs(PairArray<std::uint32_t>& is, PairArray<std::uint32_t>& js,
     gather(is, perm, 1);
     gather(js, perm, 1);
     gather(ss, perm, 3);
-    gather(ds, perm, 1);
-    gather(vs, perm, 3);
+    gather(ListWriter::distances(list), perm, 1);
+    gather(ListWriter::vectors(list), perm, 3);
+}
+
+// Appends the chunks' lists to `out` (which holds chunk 0) in chunk order, each copied to its
+// place by its own thread.
+void append_in_order(NeighborList& out, std::vector<NeighborList>& partial,
+                     const std::vector<std::size_t>& sizes, bool shifts, bool distances,
+                     bool vectors) {
+    std::vector<std::size_t> offset(sizes.size(), 0);
+    for (std::size_t t = 1; t < sizes.size(); ++t) {
+        offset[t] = offset[t - 1] + sizes[t - 1];
+    }
+    const std::size_t total = offset.back() + sizes.back();
+    ListWriter::i(out).resize(total);
+    ListWriter::j(out).resize(total);
+    if (shifts) {
+        ListWriter::shifts(out).resize(3 * total);
+    }
+    if (distances) {
+        ListWriter::distances(out).resize(total);
+    }
+    if (vectors) {
+        ListWriter::vectors(out).resize(3 * total);
+    }
+    run_in_threads(sizes.size() - 1, [&](std::size_t k) {
+        NeighborList& from = partial[k];
+        const auto at = std::ptrdiff_t(offset[k + 1]);
+        auto copy = [](auto& source, auto& target, std::ptrdiff_t to) {
+            std::copy(source.begin(), source.end(), target.begin() + to);
+        };
+        copy(ListWriter::i(from), ListWriter::i(out), at);
+        copy(ListWriter::j(from), ListWriter::j(out), at);
+        copy(ListWriter::shifts(from), ListWriter::shifts(out), 3 * at);
+        copy(ListWriter::distances(from), ListWriter::distances(out), at);
+        copy(ListWriter::vectors(from), ListWriter::vectors(out), 3 * at);
+    });
+}
+
+void to_caller_frame(PairArray<std::int32_t>& shifts, const Eigen::Matrix3i& t) {
+    for (std::size_t k = 0; k < shifts.size(); k += 3) {
+        const Eigen::Vector3i s = t * Eigen::Vector3i(shifts[k], shifts[k + 1], shifts[k + 2]);
+        shifts[k] = s[0];
+        shifts[k + 1] = s[1];
+        shifts[k + 2] = s[2];
+    }
 }
 
 } // namespace
 
-std::vector<double> NeighborSearch::cell_costs() const {
-    const std::size_t cells = grid_.cell_count();
-    std::vector<double> cost(cells, 0.0);
-    if (options_.cell_list == CellListKind::sorted) {
-        for (std::size_t c = 0; c < cells; ++c) {
-            const double atoms = sorted_.cell_end(c) - sorted_.cell_start(c);
-            if (atoms == 0) {
-                continue;
-            }
-            double candidates = 0;
-            for_each_row_piece(c, [&](std::uint32_t begin, std::uint32_t end, bool, int, int, int) {
-                candidates += end - begin;
-            });
-            cost[c] = atoms * (candidates + 1);
-        }
-    } else {
-        for (std::size_t c = 0; c < cells; ++c) {
-            for (auto a = linked_.head(c); a != LinkedCellList::end; a = linked_.next(a)) {
-                cost[c] += 1;
-            }
-        }
-    }
-    return cost;
-}
-
 void NeighborSearch::compute(NeighborList& out) const {
     out.clear();
-    if (!built_) {
+    if (!state_) {
         detail::fail<InvalidArgument>("NeighborSearch::compute() needs a successful build() first");
     }
-    const Quantities& q = options_.quantities;
-    const bool keep_shifts = q.shifts || options_.sorted; // sorting needs S
-    const std::size_t cells = grid_.cell_count();
-    std::size_t threads = options_.threads > 0
-                              ? std::size_t(options_.threads)
+    const detail::SearchState& s = *state_;
+    if (!s.backend) {
+        if (s.options.sorted) {
+            ListWriter::offsets(out).assign(s.atom_count + 1, 0);
+        }
+        return;
+    }
+    const Quantities& q = s.options.quantities;
+    const bool keep_shifts = q.shifts || s.options.sorted; // sorting needs S
+    const std::size_t units = s.backend->unit_count();
+    std::size_t threads = s.options.threads > 0
+                              ? std::size_t(s.options.threads)
                               : std::max<std::size_t>(1, std::thread::hardware_concurrency());
     // With automatic threads, small searches are not worth a thread.
-    if (options_.threads == 0 && (estimated_pairs_ < 20000 || cells < 4 * threads)) {
+    if (s.options.threads == 0 && (s.estimated_pairs < 20000 || units < 4 * threads)) {
         threads = 1;
     }
-    threads = std::min(threads, cells);
+    threads = std::max<std::size_t>(1, std::min(threads, units));
     try {
-        // Contiguous chunks of cells of about equal cost; chunk t goes to thread t and the
-        // chunks are concatenated in cell order, so the result does not depend on `threads`.
-        std::vector<std::size_t> bounds{0};
+        // Contiguous chunks of units of about equal work (from the occupancy moments); chunk t
+        // goes to thread t and the chunks are concatenated in unit order, so the result does not
+        // depend on `threads`.
+        std::vector<std::size_t> bounds{0, units};
         if (threads > 1) {
-            const std::vector<double> cost = cell_costs();
-            const double total = std::accumulate(cost.begin(), cost.end(), 0.0);
-            double running = 0;
-            for (std::size_t c = 0; c < cells && bounds.size() < threads; ++c) {
-                running += cost[c];
-                if (running >= total * double(bounds.size()) / double(threads)) {
-                    bounds.push_back(c + 1);
-                }
+            std::vector<double> atoms;
+            double neighbours = 0;
+            s.backend->unit_occupancy(atoms, neighbours);
+            for (double& w : atoms) {
+                w = occupancy_work(w, neighbours);
             }
+            bounds = split_work(atoms, threads);
         }
-        bounds.push_back(cells);
         const std::size_t chunks = bounds.size() - 1;
 
         // Chunk 0 writes straight into `out`, the others into their own lists.
         std::vector<NeighborList> partial;
-        partial.swap(out.partial_);
+        partial.swap(ListWriter::partial(out));
         partial.resize(chunks - 1);
         std::vector<std::size_t> sizes(chunks, 0);
         std::vector<std::exception_ptr> errors(chunks);
-        const double share = std::min(estimated_pairs_ * 1.05 + 16, 1e8) / double(chunks);
+        const double share = std::min(s.estimated_pairs * 1.05 + 16, 1e8) / double(chunks);
         auto run_chunk = [&](std::size_t t) {
             try {
                 NeighborList& list = t == 0 ? out : partial[t - 1];
-                PairSink sink(list.i_, list.j_, keep_shifts ? &list.shifts_ : nullptr,
-                              q.distances ? &list.distances_ : nullptr,
-                              q.vectors ? &list.vectors_ : nullptr, options_.max_pairs,
-                              static_cast<std::size_t>(share));
-                traverse([&](std::uint32_t i, std::uint32_t j, int sa, int sb, int sc, double dx,
-                             double dy, double dz,
-                             double d_sq) { sink.add(i, j, sa, sb, sc, dx, dy, dz, d_sq); },
-                         bounds[t], bounds[t + 1]);
+                const detail::PairColumns columns{&ListWriter::i(list), &ListWriter::j(list),
+                                                  keep_shifts ? &ListWriter::shifts(list) : nullptr,
+                                                  q.distances ? &ListWriter::distances(list)
+                                                              : nullptr,
+                                                  q.vectors ? &ListWriter::vectors(list) : nullptr};
+                detail::PairSink sink(columns, s.options.max_pairs,
+                                      static_cast<std::size_t>(share));
+                detail::CandidateScanner scan(s.atoms, s.h, s.cutoff_sq, s.rule, s.options.half,
+                                              s.to_caller, s.reduced_frame, sink);
+                s.backend->visit(bounds[t], bounds[t + 1], scan);
                 sink.finish();
                 sizes[t] = sink.size();
             } catch (...) {
@@ -485,26 +540,23 @@ void NeighborSearch::compute(NeighborList& out) const {
         }
         if (chunks > 1) {
             const std::size_t total = std::accumulate(sizes.begin(), sizes.end(), std::size_t(0));
-            if (options_.max_pairs != 0 && total > options_.max_pairs) {
-                detail::fail<InvalidArgument>(
-                    "the neighbour list has more than max_pairs = ", options_.max_pairs,
-                    " pairs; raise NeighborOptions::max_pairs to allow it");
+            if (s.options.max_pairs != 0 && total > s.options.max_pairs) {
+                too_many_pairs(s.options.max_pairs);
             }
             append_in_order(out, partial, sizes, keep_shifts, q.distances, q.vectors);
         }
         for (NeighborList& list : partial) {
             list.clear();
         }
-        out.partial_.swap(partial);
-        if (reduced_frame_ && keep_shifts) {
-            to_caller_frame(out.shifts_);
+        ListWriter::partial(out).swap(partial);
+        if (s.reduced_frame && keep_shifts) {
+            to_caller_frame(ListWriter::shifts(out), s.to_caller);
         }
-        if (options_.sorted) {
-            sort_pairs(out.i_, out.j_, out.shifts_, out.distances_, out.vectors_, out.offsets_,
-                       atom_count_);
+        if (s.options.sorted) {
+            sort_pairs(out, s.atom_count);
         }
         if (!q.shifts) {
-            out.shifts_.clear();
+            ListWriter::shifts(out).clear();
         }
     } catch (...) {
         out.clear();
@@ -512,48 +564,48 @@ void NeighborSearch::compute(NeighborList& out) const {
     }
 }
 
-void NeighborSearch::append_in_order(NeighborList& out, std::vector<NeighborList>& partial,
-                                     const std::vector<std::size_t>& sizes, bool shifts,
-                                     bool distances, bool vectors) {
-    std::vector<std::size_t> offset(sizes.size(), 0);
-    for (std::size_t t = 1; t < sizes.size(); ++t) {
-        offset[t] = offset[t - 1] + sizes[t - 1];
+void NeighborSearch::for_each_block(void (*on_block)(void*, const PairBlock&),
+                                    void* context) const {
+    if (!state_) {
+        detail::fail<InvalidArgument>(
+            "NeighborSearch::for_each_pair() needs a successful build() first");
     }
-    const std::size_t total = offset.back() + sizes.back();
-    out.i_.resize(total);
-    out.j_.resize(total);
-    if (shifts) {
-        out.shifts_.resize(3 * total);
+    const detail::SearchState& s = *state_;
+    if (!s.backend) {
+        return;
     }
-    if (distances) {
-        out.distances_.resize(total);
-    }
-    if (vectors) {
-        out.vectors_.resize(3 * total);
-    }
-    // Each partial list is copied to its place by its own thread.
-    run_in_threads(sizes.size() - 1, [&](std::size_t k) {
-        const NeighborList& from = partial[k];
-        const std::size_t at = offset[k + 1];
-        std::copy(from.i_.begin(), from.i_.end(), out.i_.begin() + std::ptrdiff_t(at));
-        std::copy(from.j_.begin(), from.j_.end(), out.j_.begin() + std::ptrdiff_t(at));
-        std::copy(from.shifts_.begin(), from.shifts_.end(),
-                  out.shifts_.begin() + std::ptrdiff_t(3 * at));
-        std::copy(from.distances_.begin(), from.distances_.end(),
-                  out.distances_.begin() + std::ptrdiff_t(at));
-        std::copy(from.vectors_.begin(), from.vectors_.end(),
-                  out.vectors_.begin() + std::ptrdiff_t(3 * at));
-    });
+    detail::PairSink sink(on_block, context, s.to_caller, s.reduced_frame);
+    detail::CandidateScanner scan(s.atoms, s.h, s.cutoff_sq, s.rule, s.options.half, s.to_caller,
+                                  s.reduced_frame, sink);
+    s.backend->visit(0, s.backend->unit_count(), scan);
+    sink.finish();
 }
 
-void NeighborSearch::to_caller_frame(PairArray<std::int32_t>& shifts) const {
-    const Eigen::Matrix3i& t = to_caller_;
-    for (std::size_t k = 0; k < shifts.size(); k += 3) {
-        const Eigen::Vector3i s = t * Eigen::Vector3i(shifts[k], shifts[k + 1], shifts[k + 2]);
-        shifts[k] = s[0];
-        shifts[k + 1] = s[1];
-        shifts[k + 2] = s[2];
+SearchInfo NeighborSearch::info() const {
+    SearchInfo info;
+    if (!state_) {
+        return info;
     }
+    const detail::SearchState& s = *state_;
+    info.reduced_frame = s.reduced_frame;
+    info.estimated_pairs = s.estimated_pairs;
+    info.search_radius = s.search_radius;
+    if (s.backend) {
+        s.backend->describe(info);
+        info.work_units = s.backend->unit_count();
+    } else {
+        info.backend = s.options.backend == SearchBackend::automatic ? SearchBackend::dense
+                                                                     : s.options.backend;
+    }
+    return info;
+}
+
+double NeighborSearch::estimated_pairs() const {
+    return state_ ? state_->estimated_pairs : 0;
+}
+
+std::size_t NeighborSearch::atom_count() const {
+    return state_ ? state_->atom_count : 0;
 }
 
 NeighborList compute_neighbors(const Box& box, PointsView positions,

@@ -1,5 +1,6 @@
 #include "tricell/verlet.hpp"
 
+#include "detail/list_writer.hpp"
 #include "tricell/detail/distance_kernel.hpp"
 
 #include <algorithm>
@@ -54,23 +55,17 @@ void check_view(PointsView positions) {
 } // namespace
 
 void VerletOptions::validate() const {
-    if (!std::isfinite(cutoff)) {
-        detail::fail<InvalidArgument>("cutoff must be finite (got ", cutoff, ")");
+    if (neighbors.variable_cutoff()) {
+        detail::fail<InvalidArgument>(
+            "the Verlet list takes one cutoff (neighbors.cutoff); radii and species_cutoffs are "
+            "for NeighborSearch");
     }
-    if (!(cutoff > 0)) {
-        detail::fail<InvalidArgument>("cutoff must be > 0 (got ", cutoff, ")");
-    }
+    neighbors.validate();
     if (!std::isfinite(skin)) {
         detail::fail<InvalidArgument>("skin must be finite (got ", skin, ")");
     }
     if (!(skin >= 0)) {
         detail::fail<InvalidArgument>("skin must be >= 0 (got ", skin, ")");
-    }
-    if (!(std::isfinite(cells_per_cutoff) && cells_per_cutoff >= 1)) {
-        detail::fail<InvalidArgument>("cells_per_cutoff must be >= 1 (got ", cells_per_cutoff, ")");
-    }
-    if (threads < 0) {
-        detail::fail<InvalidArgument>("threads must be >= 0 (got ", threads, ")");
     }
 }
 
@@ -89,12 +84,7 @@ void VerletList::reset() {
 }
 
 void VerletList::clear_pairs() {
-    pairs_.i_.clear();
-    pairs_.j_.clear();
-    pairs_.shifts_.clear();
-    pairs_.distances_.clear();
-    pairs_.vectors_.clear();
-    pairs_.offsets_.clear();
+    pairs_.clear();
 }
 
 bool VerletList::compatible(const Box& box, PointsView positions) const {
@@ -106,7 +96,7 @@ double VerletList::displacement_budget(const Box& box) const {
     if (!build_box_ || box.periodicity() != build_box_->periodicity()) {
         return -std::numeric_limits<double>::infinity();
     }
-    return 0.5 * (options_.skin - box_growth(*build_box_, box) * options_.cutoff);
+    return 0.5 * (options_.skin - box_growth(*build_box_, box) * options_.neighbors.cutoff);
 }
 
 double VerletList::track(const Box& box, PointsView positions, double stop_above, bool exact,
@@ -227,24 +217,20 @@ void VerletList::rebuild(const Box& box, PointsView positions) {
 
 void VerletList::build(const Box& box, PointsView positions) {
     build_box_.reset();
-    NeighborOptions search_options;
+    NeighborOptions search_options = options_.neighbors;
     double scale = box.matrix().cwiseAbs().maxCoeff();
     for (std::size_t i = 0; i < positions.size(); ++i) {
         const double r = Eigen::Vector3d(positions[i]).cwiseAbs().maxCoeff();
         scale = std::isfinite(r) ? std::max(scale, r) : scale; // the search reports non-finite
     }
     search_options.cutoff = list_radius() * (1 + candidate_margin) + coordinate_margin * scale;
-    search_options.half = options_.half;
     search_options.quantities.shifts = true;
     search_options.quantities.distances = false;
     search_options.quantities.vectors = false;
-    search_options.cells_per_cutoff = options_.cells_per_cutoff;
-    search_options.cell_list = options_.cell_list;
-    search_options.max_pairs = options_.max_pairs;
-    search_options.max_cells = options_.max_cells;
-    search_options.threads = options_.threads;
-    search_.build(box, positions, search_options); // validates the positions
-    search_.compute(raw_);
+    search_options.sorted = false;
+    NeighborSearch search;
+    search.build(box, positions, search_options); // validates the positions
+    search.compute(raw_);
 
     // Reference: wrapped fractional positions s0 = s - image. Candidates are stored relative
     // to them, S0 = S + image_j - image_i, which keeps the shifts small (within the reach of
@@ -395,24 +381,26 @@ void VerletList::refresh(const Box& box) {
         }
         shift_box_ = h;
     }
-    const Quantities& q = options_.quantities;
+    const Quantities& q = options_.neighbors.quantities;
     const std::size_t n = atom_count_;
     const std::size_t capacity = candidate_j_.size();
-    pairs_.i_.resize(capacity);
-    pairs_.j_.resize(capacity);
-    pairs_.shifts_.resize(q.shifts ? 3 * capacity : 0);
-    pairs_.distances_.resize(q.distances ? capacity : 0);
-    pairs_.vectors_.resize(q.vectors ? 3 * capacity : 0);
-    pairs_.offsets_.resize(n + 1);
-    const RefreshColumns out{pairs_.i_.data(), pairs_.j_.data(), pairs_.shifts_.data(),
-                             pairs_.distances_.data(), pairs_.vectors_.data()};
-    const double cutoff_sq = detail::strict_threshold_sq(options_.cutoff);
+    detail::ListWriter::i(pairs_).resize(capacity);
+    detail::ListWriter::j(pairs_).resize(capacity);
+    detail::ListWriter::shifts(pairs_).resize(q.shifts ? 3 * capacity : 0);
+    detail::ListWriter::distances(pairs_).resize(q.distances ? capacity : 0);
+    detail::ListWriter::vectors(pairs_).resize(q.vectors ? 3 * capacity : 0);
+    detail::ListWriter::offsets(pairs_).resize(n + 1);
+    const RefreshColumns out{
+        detail::ListWriter::i(pairs_).data(), detail::ListWriter::j(pairs_).data(),
+        detail::ListWriter::shifts(pairs_).data(), detail::ListWriter::distances(pairs_).data(),
+        detail::ListWriter::vectors(pairs_).data()};
+    const double cutoff_sq = detail::strict_threshold_sq(options_.neighbors.cutoff);
     auto run = [&](auto shifts, auto distances, auto vectors) {
         return filter_candidates<decltype(shifts)::value, decltype(distances)::value,
                                  decltype(vectors)::value>(
             n, candidate_offsets_.data(), candidate_j_.data(), candidate_shift_.data(),
             unwrapped_.data(), shift_vectors_.data(), shift_table_.data(), jumps_.data(), cutoff_sq,
-            pairs_.offsets_.data(), out);
+            detail::ListWriter::offsets(pairs_).data(), out);
     };
     using Yes = std::true_type;
     using No = std::false_type;
@@ -444,158 +432,11 @@ void VerletList::refresh(const Box& box) {
         count = run(Yes{}, Yes{}, Yes{});
         break;
     }
-    pairs_.i_.resize(count);
-    pairs_.j_.resize(count);
-    pairs_.shifts_.resize(q.shifts ? 3 * count : 0);
-    pairs_.distances_.resize(q.distances ? count : 0);
-    pairs_.vectors_.resize(q.vectors ? 3 * count : 0);
-}
-
-// ---- cost model ------------------------------------------------------------------------------
-
-double cells_per_list_radius(CellSize rule, double cutoff, double skin) {
-    switch (rule) {
-    case CellSize::list_radius:
-        return 1;
-    case CellSize::cutoff:
-        return (cutoff + skin) / cutoff;
-    case CellSize::half_list_radius:
-        return 2;
-    case CellSize::third_list_radius:
-        return 3;
-    }
-    return 2;
-}
-
-std::size_t stencil_cells(double cells_per_cutoff) {
-    if (!(std::isfinite(cells_per_cutoff) && cells_per_cutoff >= 1 && cells_per_cutoff < 1e3)) {
-        detail::fail<InvalidArgument>("cells_per_cutoff must be in [1, 1000) (got ",
-                                      cells_per_cutoff, ")");
-    }
-    const int reach = int(std::ceil(cells_per_cutoff));
-    const double k_sq = cells_per_cutoff * cells_per_cutoff;
-    auto gap = [](int a) {
-        const int g = std::max(0, std::abs(a) - 1);
-        return double(g) * double(g);
-    };
-    std::size_t count = 0;
-    for (int a = -reach; a <= reach; ++a) {
-        for (int b = -reach; b <= reach; ++b) {
-            for (int c = -reach; c <= reach; ++c) {
-                if (gap(a) + gap(b) + gap(c) < k_sq) {
-                    ++count;
-                }
-            }
-        }
-    }
-    return count;
-}
-
-void SkinCostModel::validate() const {
-    auto positive = [](const char* name, double v) {
-        if (!(std::isfinite(v) && v > 0)) {
-            detail::fail<InvalidArgument>(name, " must be > 0 (got ", v, ")");
-        }
-    };
-    auto non_negative = [](const char* name, double v) {
-        if (!(std::isfinite(v) && v >= 0)) {
-            detail::fail<InvalidArgument>(name, " must be >= 0 (got ", v, ")");
-        }
-    };
-    positive("cutoff", cutoff);
-    positive("density", density);
-    positive("displacement_per_step", displacement_per_step);
-    non_negative("build_per_atom", build_per_atom);
-    non_negative("build_per_test", build_per_test);
-    non_negative("build_per_cell_visit", build_per_cell_visit);
-    non_negative("refresh_per_atom", refresh_per_atom);
-    non_negative("refresh_per_candidate", refresh_per_candidate);
-    non_negative("max_skin", max_skin);
-}
-
-SkinPrediction predict_skin_cost(const SkinCostModel& model, double skin, CellSize cell_size) {
-    model.validate();
-    if (!(std::isfinite(skin) && skin >= 0)) {
-        detail::fail<InvalidArgument>("skin must be >= 0 (got ", skin, ")");
-    }
-    const double g = model.half ? 0.5 : 1.0;
-    const double rho = model.density;
-    const double r = model.cutoff + skin;
-    SkinPrediction p;
-    p.skin = skin;
-    p.cell_size = cell_size;
-    p.cells_per_cutoff = cells_per_list_radius(cell_size, model.cutoff, skin);
-    const double h = r / p.cells_per_cutoff;
-    const double cells = double(stencil_cells(p.cells_per_cutoff));
-    p.steps_per_build = 1 + skin / (2 * model.displacement_per_step);
-    p.candidates_per_atom = g * rho * 4.0 / 3.0 * pi * r * r * r;
-    p.build_tests_per_atom = g * rho * cells * h * h * h;
-    const double visits = g * cells / (rho * h * h * h);
-    p.build_cost = model.build_per_atom + model.build_per_test * p.build_tests_per_atom +
-                   model.build_per_cell_visit * visits;
-    p.refresh_cost = model.refresh_per_atom + model.refresh_per_candidate * p.candidates_per_atom;
-    p.cost_per_step = p.build_cost / p.steps_per_build + p.refresh_cost;
-    return p;
-}
-
-SkinPrediction tune_skin(const SkinCostModel& model, CellSize cell_size) {
-    model.validate();
-    const double max_skin = model.max_skin > 0 ? model.max_skin : model.cutoff;
-    // A fine scan (the cost is smooth in the skin except where the h = r_c stencil changes),
-    // then golden-section refinement around the best point.
-    constexpr int samples = 2000;
-    auto cost = [&](double skin) {
-        return predict_skin_cost(model, skin, cell_size).cost_per_step;
-    };
-    int best = 0;
-    double best_cost = cost(0);
-    for (int s = 1; s <= samples; ++s) {
-        const double c = cost(max_skin * s / samples);
-        if (c < best_cost) {
-            best = s;
-            best_cost = c;
-        }
-    }
-    double lo = max_skin * std::max(0, best - 1) / samples;
-    double hi = max_skin * std::min(samples, best + 1) / samples;
-    const double ratio = (std::sqrt(5.0) - 1) / 2;
-    double a = hi - ratio * (hi - lo);
-    double b = lo + ratio * (hi - lo);
-    double ca = cost(a);
-    double cb = cost(b);
-    for (int it = 0; it < 60; ++it) {
-        if (ca < cb) {
-            hi = b;
-            b = a;
-            cb = ca;
-            a = hi - ratio * (hi - lo);
-            ca = cost(a);
-        } else {
-            lo = a;
-            a = b;
-            ca = cb;
-            b = lo + ratio * (hi - lo);
-            cb = cost(b);
-        }
-    }
-    double skin = max_skin * best / samples;
-    const double refined = 0.5 * (lo + hi);
-    if (cost(refined) < best_cost) {
-        skin = refined;
-    }
-    return predict_skin_cost(model, skin, cell_size);
-}
-
-SkinPrediction tune_skin(const SkinCostModel& model) {
-    SkinPrediction best = tune_skin(model, CellSize::list_radius);
-    for (const CellSize rule :
-         {CellSize::cutoff, CellSize::half_list_radius, CellSize::third_list_radius}) {
-        const SkinPrediction p = tune_skin(model, rule);
-        if (p.cost_per_step < best.cost_per_step) {
-            best = p;
-        }
-    }
-    return best;
+    detail::ListWriter::i(pairs_).resize(count);
+    detail::ListWriter::j(pairs_).resize(count);
+    detail::ListWriter::shifts(pairs_).resize(q.shifts ? 3 * count : 0);
+    detail::ListWriter::distances(pairs_).resize(q.distances ? count : 0);
+    detail::ListWriter::vectors(pairs_).resize(q.vectors ? 3 * count : 0);
 }
 
 } // namespace tricell

@@ -139,11 +139,11 @@ class LjSimulation {
     LjSimulation(LjSystem system, const MdOptions& options)
         : sys_(std::move(system)), options_(options) {
         tricell::VerletOptions verlet;
-        verlet.cutoff = options_.cutoff;
+        verlet.neighbors.cutoff = options_.cutoff;
         verlet.skin = options_.skin;
-        verlet.half = true;
-        verlet.cells_per_cutoff = options_.cells_per_cutoff;
-        verlet.quantities = tricell::Quantities{false, false, true};
+        verlet.neighbors.half = true;
+        verlet.neighbors.cells_per_cutoff = options_.cells_per_cutoff;
+        verlet.neighbors.quantities = tricell::Quantities{false, false, true};
         verlet_ = tricell::VerletList(verlet);
         neighbor_options_.cutoff = options_.cutoff;
         neighbor_options_.half = true;

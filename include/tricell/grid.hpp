@@ -7,9 +7,10 @@
 // layers a pair within the search radius r can be apart; with images it may exceed n (cutoff
 // larger than the box) and the stencil then visits several images of the same cell.
 //
-// The total number of cells is capped (by default to a few per atom), so memory follows the
-// atoms, never the volume: when the cap bites, cells grow beyond h, the stencil reach shrinks
-// accordingly and more candidate pairs are tested. Results never change, only the speed.
+// At most 2^20 cells along an axis whatever the cap. The total number of cells is capped (by
+// default to a few per atom), so memory follows the atoms, never the volume: when the cap bites,
+// cells grow beyond h, the stencil reach shrinks accordingly and more candidate pairs are tested.
+// Results never change, only the speed.
 //
 // Integer helpers use floor division; `%` on negative numbers is never used.
 #pragma once

@@ -1,42 +1,60 @@
-// Neighbour lists in a periodic triclinic box (CONTRACT.md section 2).
+// Neighbour lists in a periodic triclinic box (CONTRACT.md section 2): the front door.
 //
-// The search works in fractional space. Each position is wrapped into the box along periodic
-// axes (remembering the integer image it came from), binned into a CellGrid, and the cells are
-// listed by a SortedCellList (default) or a LinkedCellList. Every cell is then paired with the
-// cells of the Stencil, each stencil entry carrying its image shift as a precomputed Cartesian
-// vector, and every candidate pair is tested against the cutoff. The image shift reported for a
-// pair is relative to the caller's own positions: S = (cell shift) + (image of i) - (image of j),
-// so D = x_j - x_i + H S holds for the positions as given, even far outside the box.
+// NeighborSearch::build() does, once for every backend, everything a search shares: it
+// validates the options and positions, picks the search frame (the caller's box, or its reduced
+// twin when the cell is strongly skewed), wraps every position into the box along periodic axes
+// remembering the integer image it came from, checks the expected pair count against max_pairs
+// before anything large is allocated, and hands the wrapped fractional positions to a backend.
+// A backend (lib/backends/: dense sorted grid, linked head/next grid, compact hash, octree) only
+// bins the atoms and enumerates candidate (atom range, atom range, image shift) triples; the
+// shared distance test, pair storage, half-list orientation, variable cutoffs, threads and the
+// ordered merge, sorting and the map of shifts back to the caller's lattice vectors live once, in
+// lib/. The image shift reported for a pair is relative to the caller's own positions,
+// S = (cell shift) + (image of i) - (image of j), so D = x_j - x_i + H S holds for the positions
+// as given, even far outside the box.
 //
-// Full lists report every ordered (i, j, S) with |D| < cutoff except (i, i, 0). Half lists walk
-// the half stencil (no filtering of a full enumeration) and report each pair once, oriented
-// canonically: i < j, or for i == j (an atom and its own image) S lexicographically positive.
-// That orientation does not depend on the grid, so neither does any result.
+// Full lists report every ordered (i, j, S) with |D| < cutoff except (i, i, 0). Half lists report
+// each pair once, oriented canonically: i < j, or for i == j (an atom and its own image) S
+// lexicographically positive. That orientation does not depend on the backend or the grid, so
+// neither does any result.
 //
 // Two ways to consume pairs: compute() stores them struct-of-arrays in a reusable NeighborList
 // (optionally sorted by i, j, S with per-atom offsets), and for_each_pair() calls a function
-// for each pair without storing anything.
+// for each pair without storing anything (pairs reach it in blocks of a few hundred).
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
 #include <Eigen/Core>
 
 #include "tricell/box.hpp"
-#include "tricell/cell_list.hpp"
 #include "tricell/export.hpp"
-#include "tricell/grid.hpp"
-#include "tricell/stencil.hpp"
 #include "tricell/types.hpp"
 
 namespace tricell {
 
-enum class CellListKind { sorted, linked };
+/// How atoms are binned and candidate pairs enumerated. Never changes the result, only the
+/// speed and memory (CONTRACT.md section 2).
+enum class SearchBackend {
+    automatic, ///< chosen per call from the cost model (include/tricell/cost_model.hpp)
+    dense,     ///< a dense cell grid (at most max_cells cells), atoms sorted by cell
+    linked,    ///< the same grid as head/next chains (no reordering of the atoms)
+    hash,      ///< compact hashing: only non-empty cells stored, full resolution, O(N) memory
+    octree,    ///< an adaptive octree in fractional space, leaves of at most leaf_size atoms
+};
+
+/// "auto", "dense", "linked", "hash" or "octree".
+TRICELL_API const char* backend_name(SearchBackend backend);
+/// The backend of a name backend_name() returns; InvalidArgument naming the text otherwise.
+TRICELL_API SearchBackend parse_backend(const std::string& name);
 
 /// Which per-pair quantities compute() stores besides i and j.
 struct Quantities {
@@ -45,23 +63,45 @@ struct Quantities {
     bool vectors = false;  ///< D, three doubles per pair
 };
 
+/// One entry of a per-species-pair cutoff table (symmetric: (a, b) also covers (b, a)).
+struct SpeciesCutoff {
+    std::int32_t a = 0;
+    std::int32_t b = 0;
+    double cutoff = 0; ///< pairs of these species count when d < cutoff; finite and > 0
+};
+
 struct TRICELL_API NeighborOptions {
-    /// Pairs with |D| < cutoff (strict) are reported. Must be finite and > 0.
+    /// Pairs with |D| < cutoff (strict) are reported. Finite and > 0, unless radii or
+    /// species_cutoffs decide instead (then it must stay 0).
     double cutoff = 0;
+    /// Per-atom radii (one per position, finite, >= 0): a pair (i, j) counts when
+    /// d < radii[i] + radii[j]. Empty: unused.
+    std::vector<double> radii;
+    /// Per-atom species (one per position), with species_cutoffs: a pair counts when d is below
+    /// the table's cutoff for its two species; a species pair missing from the table never
+    /// counts. Both empty: unused.
+    std::vector<std::int32_t> species;
+    std::vector<SpeciesCutoff> species_cutoffs;
     /// Report each pair once (canonical orientation) instead of both orientations.
     bool half = false;
     /// Sort by i, then j, then S lexicographically, and fill NeighborList::offsets().
     bool sorted = false;
     Quantities quantities;
-    /// Target cells per cutoff along each axis (>= 1). Never changes the result, only the speed.
+    SearchBackend backend = SearchBackend::automatic;
+    /// Target cells per cutoff along each axis (>= 1), grid backends. Never changes the result.
     double cells_per_cutoff = 1;
-    CellListKind cell_list = CellListKind::sorted;
     /// Refuse (InvalidArgument) when the estimated or actual number of stored pairs exceeds this;
     /// 0 means no limit. The default, 5e8 pairs, is about 14 GB of i, j, S, d
     /// (26 GB with D).
     std::size_t max_pairs = 500'000'000;
-    /// Cap on grid cells; 0 means 4 N + 64. Memory follows atoms, not volume.
+    /// Cap on the dense and linked grids' cells; 0 means 4 N + 64. Memory follows atoms, not
+    /// volume. (The hash and octree backends need no cap: their memory is O(N) anyway.)
     std::size_t max_cells = 0;
+    /// Hash backend: slots of the hash table; 0 means about 2 N. Any size >= 1 gives the same
+    /// result (tests use tiny tables to force collisions).
+    std::size_t hash_table_size = 0;
+    /// Octree backend: most atoms in a leaf; 0 chooses from the cost model.
+    std::size_t leaf_size = 0;
     /// Search a strongly skewed periodic cell in its reduced twin (same lattice, rounder cell),
     /// so a sheared box costs what the reduced one costs. Never changes the result.
     bool reduce_cell = true;
@@ -70,8 +110,11 @@ struct TRICELL_API NeighborOptions {
     /// (for_each_pair() always runs on the calling thread.)
     int threads = 1;
 
-    /// Throws InvalidArgument naming the offending field and value.
+    /// Throws InvalidArgument naming the offending field and value. Checks that do not need
+    /// the positions (the sizes of radii and species are checked by NeighborSearch::build()).
     void validate() const;
+    /// True when radii or species_cutoffs decide which pairs count.
+    bool variable_cutoff() const { return !radii.empty() || !species_cutoffs.empty(); }
 };
 
 /// What the visitor of for_each_pair() receives. `vector` is D = x_j - x_i + H shift.
@@ -97,6 +140,8 @@ template <class T> struct UninitializedAllocator : std::allocator<T> {
         ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
     }
 };
+struct SearchState;
+struct ListWriter;
 } // namespace detail
 
 /// The array type of a NeighborList's columns: a std::vector whose growth skips zero-filling.
@@ -128,8 +173,9 @@ class TRICELL_API NeighborList {
     void clear();
 
   private:
-    friend class NeighborSearch;
-    friend class VerletList;
+    // The library's writers (the search and the Verlet list) fill the columns through
+    // detail::ListWriter (lib/detail/list_writer.hpp).
+    friend struct detail::ListWriter;
     PairArray<std::uint32_t> i_, j_;
     PairArray<std::int32_t> shifts_;
     PairArray<double> distances_, vectors_;
@@ -139,12 +185,40 @@ class TRICELL_API NeighborList {
     std::vector<NeighborList> partial_;
 };
 
-/// The search structure for one configuration: grid, cell list, stencil and wrapped positions.
-/// build() once, then compute() and/or for_each_pair(); rebuild when positions or the box
-/// change. An object can be reused to keep its buffers.
+/// A block of pairs handed to for_each_pair()'s visitor: `count` pairs, struct-of-arrays.
+struct PairBlock {
+    std::size_t count = 0;
+    const std::uint32_t* i = nullptr;
+    const std::uint32_t* j = nullptr;
+    const std::int32_t* shifts = nullptr; ///< 3 per pair, in the caller's frame
+    const double* vectors = nullptr;      ///< 3 per pair
+    const double* distances_sq = nullptr;
+};
+
+/// What a built search looks like (for tests, the command line's `bench` and benchmarks).
+struct SearchInfo {
+    SearchBackend backend = SearchBackend::dense; ///< the backend in use (never automatic)
+    bool reduced_frame = false;                   ///< searched in the reduced twin of a skewed cell
+    std::array<int, 3> cells{{1, 1, 1}}; ///< grid backends: cells per axis (full resolution)
+    std::size_t stored_cells = 0;        ///< cells (or octree leaves) actually stored
+    std::size_t work_units = 0;          ///< what threads split: cells, buckets or leaves
+    double estimated_pairs = 0;          ///< from the density (what max_pairs is checked against)
+    double search_radius = 0;            ///< the largest cutoff, plus a rounding margin
+};
+
+/// The search structure for one configuration. build() once, then compute() and/or
+/// for_each_pair(); rebuild when positions or the box change. An object can be reused to keep
+/// its buffers. Movable, not copyable.
 class TRICELL_API NeighborSearch {
   public:
-    /// Validates everything (cutoff, positions, limits) before any work.
+    NeighborSearch();
+    ~NeighborSearch();
+    NeighborSearch(NeighborSearch&&) noexcept;
+    NeighborSearch& operator=(NeighborSearch&&) noexcept;
+    NeighborSearch(const NeighborSearch&) = delete;
+    NeighborSearch& operator=(const NeighborSearch&) = delete;
+
+    /// Validates everything (options, positions, limits) before any work.
     void build(const Box& box, PointsView positions, const NeighborOptions& options);
 
     /// Stores the pairs into `out`. On error `out` is left empty, never half written.
@@ -152,71 +226,31 @@ class TRICELL_API NeighborSearch {
 
     /// Calls visit(const Pair&) once per pair of the full or half list (as built), in
     /// unspecified order. Stores nothing.
-    template <class Visit> void for_each_pair(Visit&& visit) const;
+    template <class Visit> void for_each_pair(Visit&& visit) const {
+        using V = std::remove_reference_t<Visit>;
+        auto on_block = [](void* context, const PairBlock& block) {
+            V& v = *static_cast<V*>(context);
+            for (std::size_t k = 0; k < block.count; ++k) {
+                const std::int32_t* s = block.shifts + 3 * k;
+                const double* d = block.vectors + 3 * k;
+                v(Pair{block.i[k], block.j[k], Shift(s[0], s[1], s[2]),
+                       Eigen::Vector3d(d[0], d[1], d[2]), block.distances_sq[k]});
+            }
+        };
+        for_each_block(on_block, const_cast<void*>(static_cast<const void*>(&visit)));
+    }
 
-    const CellGrid& grid() const { return grid_; }
-    const Stencil& stencil() const { return stencil_; }
-    const SortedCellList& sorted_cells() const { return sorted_; }
-    const LinkedCellList& linked_cells() const { return linked_; }
+    /// The non-template core of for_each_pair(): calls on_block(context, block) for blocks of
+    /// pairs (all quantities filled) until every pair has been seen.
+    void for_each_block(void (*on_block)(void*, const PairBlock&), void* context) const;
+
+    SearchInfo info() const;
     /// Expected number of pairs from the density (what max_pairs is checked against first).
-    double estimated_pairs() const { return estimated_pairs_; }
-    std::size_t atom_count() const { return atom_count_; }
+    double estimated_pairs() const;
+    std::size_t atom_count() const;
 
   private:
-    // A row of the stencil: offsets (da, db, dc) for dc in [dc_lo, dc_hi]. In the sorted layout
-    // the cells of one row are consecutive in memory (c varies fastest), so a row is scanned as
-    // at most a few contiguous atom ranges instead of one range per offset.
-    struct StencilRow {
-        int da, db, dc_lo, dc_hi;
-    };
-
-    template <class Emit>
-    void traverse(Emit&& emit, std::size_t cell_begin, std::size_t cell_end) const;
-    template <bool Half, class Emit>
-    void traverse_sorted(Emit&& emit, std::size_t cell_begin, std::size_t cell_end) const;
-    template <bool Half, class Emit>
-    void traverse_linked(Emit&& emit, std::size_t cell_begin, std::size_t cell_end) const;
-    // Calls piece(begin, end, own, sa, sb, sc) for each contiguous sorted atom range that the
-    // stencil rows reach from cell c1, with its image shift.
-    template <class Piece> void for_each_row_piece(std::size_t c1, Piece&& piece) const;
-    // Estimated work per cell (candidate pairs), for splitting cells between threads.
-    std::vector<double> cell_costs() const;
-    // Maps shifts found in the reduced frame to the caller's lattice vectors.
-    void to_caller_frame(PairArray<std::int32_t>& shifts) const;
-    // Appends the chunks' lists to `out` (which holds chunk 0) in chunk order.
-    static void append_in_order(NeighborList& out, std::vector<NeighborList>& partial,
-                                const std::vector<std::size_t>& sizes, bool shifts, bool distances,
-                                bool vectors);
-    template <class CellPair>
-    void for_each_cell_pair(CellPair&& cell_pair, std::size_t cell_begin,
-                            std::size_t cell_end) const;
-
-    NeighborOptions options_;
-    Eigen::Matrix3d h_ = Eigen::Matrix3d::Identity(); // of the search frame
-    // Shifts in the search frame map to the caller's as S = to_caller_ * S' (identity unless
-    // the cell was reduced).
-    Eigen::Matrix3i to_caller_ = Eigen::Matrix3i::Identity();
-    bool reduced_frame_ = false;
-    bool built_ = false;
-    double cutoff_sq_ = 0;
-    std::size_t atom_count_ = 0;
-    double estimated_pairs_ = 0;
-    CellGrid grid_;
-    Stencil stencil_;
-    std::vector<StencilRow> rows_;
-    SortedCellList sorted_;
-    LinkedCellList linked_;
-    // Per axis, for t = c + delta in [-reach, n + reach): the neighbour cell coordinate
-    // (-1 outside an open axis) and its image shift, at index t + reach.
-    std::vector<int> neighbor_cell_[3];
-    std::vector<int> neighbor_shift_[3];
-    // Sorted layout: wrapped Cartesian positions struct-of-arrays in cell order and the image
-    // each came from (3 ints per atom, x = wrapped + H image).
-    std::vector<double> x_, y_, z_;
-    std::vector<std::int32_t> sorted_image_;
-    // Linked layout: wrapped positions and images in the caller's order.
-    std::vector<double> wrapped_;
-    std::vector<std::int32_t> image_;
+    std::unique_ptr<detail::SearchState> state_;
 };
 
 /// Convenience: build a search and store its pairs.
@@ -235,5 +269,3 @@ void for_each_pair(const Box& box, PointsView positions, const NeighborOptions& 
 }
 
 } // namespace tricell
-
-#include "tricell/detail/pair_traversal.hpp"

@@ -3,6 +3,7 @@
 
 #include "tricell/box.hpp"
 #include "tricell/cell_list.hpp"
+#include "tricell/cost_model.hpp"
 #include "tricell/error.hpp"
 #include "tricell/grid.hpp"
 #include "tricell/neighbor_list.hpp"

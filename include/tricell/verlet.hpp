@@ -60,29 +60,28 @@
 namespace tricell {
 
 struct TRICELL_API VerletOptions {
-    /// r_c: update() reports the pairs with |D| < cutoff (strict). Finite and > 0.
-    double cutoff = 0;
-    /// Delta: candidates are built at cutoff + skin. Finite and >= 0 (0 rebuilds whenever
+    /// The search of a build and what update() reports: neighbors.cutoff is r_c (pairs with
+    /// |D| < r_c, strict), neighbors.half, neighbors.quantities (what is stored per pair besides
+    /// i and j), the backend, threads of the search, max_pairs (a limit on the CANDIDATES of a
+    /// build) and max_cells. neighbors.cells_per_cutoff counts cells per LIST radius
+    /// r_l = r_c + skin (h = r_l / k, k >= 1; 1 gives h = r_l, r_l / r_c gives h = r_c; 2 by
+    /// default, see SkinCostModel); it never changes the result. neighbors.sorted is ignored
+    /// (update() always groups the pairs by i). Variable cutoffs (radii, species_cutoffs) are
+    /// not supported by the Verlet list.
+    NeighborOptions neighbors = default_neighbors();
+    /// Delta: candidates are built at r_c + skin. Finite and >= 0 (0 rebuilds whenever
     /// anything moves).
     double skin = 0;
-    /// Report each pair once, in the canonical orientation of NeighborOptions::half (i < j, or
-    /// i == j with S lexicographically positive).
-    bool half = false;
-    /// What update() stores per pair besides i and j.
-    Quantities quantities;
-    /// Cells per LIST radius r_l = cutoff + skin (h = r_l / k, k >= 1). 1 gives h = r_l;
-    /// r_l / r_c gives h = r_c. Never changes the result, only the speed (see SkinCostModel).
-    double cells_per_cutoff = 2;
-    CellListKind cell_list = CellListKind::sorted;
-    /// Limit on the number of CANDIDATES of a build (see NeighborOptions::max_pairs); 0: none.
-    std::size_t max_pairs = 500'000'000;
-    /// Cap on grid cells of a build; 0 means 4 N + 64.
-    std::size_t max_cells = 0;
-    /// Threads for the search of a build (0: all hardware threads). The filter is serial.
-    int threads = 1;
 
     /// Throws InvalidArgument naming the offending field and value.
     void validate() const;
+
+  private:
+    static NeighborOptions default_neighbors() {
+        NeighborOptions o;
+        o.cells_per_cutoff = 2;
+        return o;
+    }
 };
 
 /// A Verlet list: candidates at cutoff + skin, refreshed to the pairs within the cutoff.
@@ -100,7 +99,7 @@ class TRICELL_API VerletList {
 
     const VerletOptions& options() const { return options_; }
     /// r_l = cutoff + skin, the radius the candidates are built at.
-    double list_radius() const { return options_.cutoff + options_.skin; }
+    double list_radius() const { return options_.neighbors.cutoff + options_.skin; }
 
     /// Refreshes the pairs within the cutoff for these positions and box, rebuilding the
     /// candidates first when needs_rebuild(). Returns true if it rebuilt. Positions may lie
@@ -157,7 +156,6 @@ class TRICELL_API VerletList {
     std::optional<Box> build_box_;
     std::size_t atom_count_ = 0;
     std::vector<double> reference_;
-    NeighborSearch search_;
     NeighborList raw_;
     std::vector<std::size_t> candidate_offsets_;
     PairArray<std::uint32_t> candidate_j_;
@@ -177,70 +175,5 @@ class TRICELL_API VerletList {
     std::size_t rebuild_count_ = 0;
     std::size_t updates_since_build_ = 0;
 };
-
-/// How the cell size h of a build relates to the radii (cells_per_cutoff = r_l / h).
-enum class CellSize {
-    list_radius,       ///< h = r_l: one cell per list radius, 27-cell stencil
-    cutoff,            ///< h = r_c: cells of the cutoff, the stencil reaching two cells
-    half_list_radius,  ///< h = r_l / 2 (the default cells_per_cutoff = 2)
-    third_list_radius, ///< h = r_l / 3
-};
-
-/// cells_per_cutoff (cells per list radius) for a rule: r_l / h.
-TRICELL_API double cells_per_list_radius(CellSize rule, double cutoff, double skin);
-
-/// Stencil entries of the idealised grid: cubic cells of side h = r / k, offsets a in Z^3 whose
-/// cells come closer than r, i.e. sum over axes of max(0, |a| - 1)^2 < k^2 (27 for k = 1, 125
-/// for k = 2). A build tests about density * stencil_cells(k) * h^3 pairs per atom.
-TRICELL_API std::size_t stencil_cells(double cells_per_cutoff);
-
-/// Inputs of the skin cost model, all per atom: costs in any one time unit (measured, e.g. by
-/// benchmarks/verlet_bench.cpp), lengths in the units of the box. With g = 1/2 for half lists
-/// (else 1), r_l = r_c + skin, h = r_l / k and n(k) = stencil_cells(k):
-///     candidates       n_c = g rho (4 pi / 3) r_l^3
-///     build tests      n_t = g rho n(k) h^3
-///     cell visits      n_v = g n(k) / (rho h^3)
-///     C_b = build_per_atom + build_per_test n_t + build_per_cell_visit n_v
-///     C_f = refresh_per_atom + refresh_per_candidate n_c
-///     steps per build  L = 1 + skin / (2 v)
-///     cost per step    C = C_b / L + C_f
-/// The cost of the force loop itself (pairs within r_c) does not depend on the skin and is left
-/// out.
-struct TRICELL_API SkinCostModel {
-    double cutoff = 0;                ///< r_c
-    double density = 0;               ///< rho, atoms per unit volume
-    double displacement_per_step = 0; ///< v: largest atom displacement per step
-    bool half = true;
-    double build_per_atom = 0;        ///< part of a build independent of the radius
-    double build_per_test = 0;        ///< per distance test during a build
-    double build_per_cell_visit = 0;  ///< per (cell, stencil entry) visited during a build
-    double refresh_per_atom = 0;      ///< per step: the displacement check
-    double refresh_per_candidate = 0; ///< per step: filtering one candidate
-    double max_skin = 0;              ///< largest skin considered; 0 means r_c
-
-    /// Throws InvalidArgument naming the offending field and value.
-    void validate() const;
-};
-
-/// The model's prediction for one skin and cell size.
-struct SkinPrediction {
-    double skin = 0;
-    CellSize cell_size = CellSize::half_list_radius;
-    double cells_per_cutoff = 2;     ///< r_l / h, to put into VerletOptions
-    double steps_per_build = 1;      ///< L
-    double candidates_per_atom = 0;  ///< n_c
-    double build_tests_per_atom = 0; ///< n_t
-    double build_cost = 0;           ///< C_b per atom
-    double refresh_cost = 0;         ///< C_f per atom
-    double cost_per_step = 0;        ///< C per atom
-};
-
-/// The model evaluated at one skin and cell-size rule.
-TRICELL_API SkinPrediction predict_skin_cost(const SkinCostModel& model, double skin,
-                                             CellSize cell_size);
-/// The skin in [0, max_skin] minimising the cost per step for one cell-size rule.
-TRICELL_API SkinPrediction tune_skin(const SkinCostModel& model, CellSize cell_size);
-/// The skin and cell-size rule minimising the cost per step.
-TRICELL_API SkinPrediction tune_skin(const SkinCostModel& model);
 
 } // namespace tricell

@@ -169,6 +169,66 @@ TEST(NeighborList, RejectsBadCutoff) {
                      "threads must be in [0, 1024] (got -2)");
 }
 
+TEST(NeighborList, RejectsBadVariableCutoffsNamingThem) {
+    const std::vector<Eigen::Vector3d> x{{0, 0, 0}, {1, 0, 0}};
+    NeighborOptions o;
+    o.radii = {1.0, -0.5};
+    EXPECT_THROW_MSG(tricell::compute_neighbors(cube10, x, o), tricell::InvalidArgument,
+                     "radii[1] must be finite and >= 0 (got -0.5)");
+    o.radii = {1.0};
+    EXPECT_THROW_MSG(tricell::compute_neighbors(cube10, x, o), tricell::InvalidArgument,
+                     "radii has 1 entries for 2 positions");
+    o.radii = {1.0, 1.0};
+    o.cutoff = 3;
+    EXPECT_THROW_MSG(tricell::compute_neighbors(cube10, x, o), tricell::InvalidArgument,
+                     "cutoff must be 0 when radii decide which pairs count (got 3)");
+    o.cutoff = 0;
+    o.species_cutoffs = {{1, 2, 2.0}};
+    EXPECT_THROW_MSG(tricell::compute_neighbors(cube10, x, o), tricell::InvalidArgument,
+                     "set radii or species_cutoffs, not both");
+    o.radii.clear();
+    EXPECT_THROW_MSG(tricell::compute_neighbors(cube10, x, o), tricell::InvalidArgument,
+                     "species has 0 entries for 2 positions");
+    o.species = {1, 2};
+    o.species_cutoffs = {{1, 2, 2.0}, {2, 1, 2.5}};
+    EXPECT_THROW_MSG(tricell::compute_neighbors(cube10, x, o), tricell::InvalidArgument,
+                     "species pair 2-1 has two cutoffs in species_cutoffs (2 and 2.5)");
+    o.species_cutoffs = {{1, 2, 0.0}};
+    EXPECT_THROW_MSG(tricell::compute_neighbors(cube10, x, o), tricell::InvalidArgument,
+                     "species_cutoffs[0] (species 1-2) must be finite and > 0 (got 0)");
+    o.species_cutoffs.clear();
+    o.cutoff = 1;
+    EXPECT_THROW_MSG(tricell::compute_neighbors(cube10, x, o), tricell::InvalidArgument,
+                     "species is set but species_cutoffs is empty");
+    o = NeighborOptions();
+    o.cutoff = 1;
+    o.hash_table_size = std::size_t(1) << 40;
+    EXPECT_THROW_MSG(tricell::compute_neighbors(cube10, x, o), tricell::InvalidArgument,
+                     "hash_table_size must be at most 2^31");
+    EXPECT_THROW_MSG(
+        tricell::parse_backend("fast"), tricell::InvalidArgument,
+        "unknown search backend 'fast' (expected auto, dense, linked, hash or octree)");
+    EXPECT_EQ(tricell::parse_backend("hash"), tricell::SearchBackend::hash);
+}
+
+TEST(NeighborList, ZeroRadiiOrAbsentSpeciesGiveNoPairs) {
+    const std::vector<Eigen::Vector3d> x{{0, 0, 0}, {1, 0, 0}};
+    NeighborOptions o;
+    o.radii = {0.0, 0.0};
+    o.sorted = true;
+    NeighborList list = tricell::compute_neighbors(cube10, x, o);
+    EXPECT_TRUE(list.empty());
+    EXPECT_EQ(list.offsets(), (std::vector<std::size_t>{0, 0, 0}));
+    o.radii.clear();
+    o.species = {1, 1};
+    o.species_cutoffs = {{1, 2, 5.0}}; // species 2 never occurs
+    EXPECT_TRUE(tricell::compute_neighbors(cube10, x, o).empty());
+    o.species_cutoffs = {{1, 1, 1.0}}; // d = 1 is not < 1
+    EXPECT_TRUE(tricell::compute_neighbors(cube10, x, o).empty());
+    o.species_cutoffs = {{1, 1, std::nextafter(1.0, 2.0)}};
+    EXPECT_EQ(tricell::compute_neighbors(cube10, x, o).size(), 2u);
+}
+
 TEST(NeighborList, RejectsNonFinitePositionNamingIt) {
     std::vector<Eigen::Vector3d> x(20, Eigen::Vector3d(1, 1, 1));
     x[17].y() = std::numeric_limits<double>::quiet_NaN();

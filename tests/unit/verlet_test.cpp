@@ -16,6 +16,7 @@
 #include "support/brute_force.hpp"
 #include "support/expect_throw_msg.hpp"
 #include "support/random_boxes.hpp"
+#include "tricell/cost_model.hpp"
 #include "tricell/error.hpp"
 #include "tricell/verlet.hpp"
 
@@ -52,10 +53,10 @@ constexpr int trajectory_steps = 100;
 
 VerletOptions verlet_options(double cutoff, double skin, bool half = false) {
     VerletOptions o;
-    o.cutoff = cutoff;
+    o.neighbors.cutoff = cutoff;
     o.skin = skin;
-    o.half = half;
-    o.quantities.vectors = true;
+    o.neighbors.half = half;
+    o.neighbors.quantities.vectors = true;
     return o;
 }
 
@@ -105,9 +106,9 @@ PairMap to_map(const VerletList& list) {
 
 ::testing::AssertionResult matches_brute_force(const VerletList& list, const Box& box,
                                                const std::vector<Eigen::Vector3d>& x) {
-    const double cutoff = list.options().cutoff;
+    const double cutoff = list.options().neighbors.cutoff;
     PairMap expected = tricell::testing::brute_force_pairs(box, x, cutoff);
-    if (list.options().half) {
+    if (list.options().neighbors.half) {
         expected = tricell::testing::canonical_half(expected);
     }
     return same_pairs(expected, to_map(list), cutoff);
@@ -159,7 +160,7 @@ TrajectoryStats run_trajectory(std::uint64_t seed, Wrapping wrapping, int steps)
     const std::size_t n =
         cutoff > width ? 6 + std::size_t(unit(rng) * 8) : 20 + std::size_t(unit(rng) * 24);
     VerletOptions options = verlet_options(cutoff, skin, half);
-    options.cells_per_cutoff = 1 + double(seed % 3);
+    options.neighbors.cells_per_cutoff = 1 + double(seed % 3);
     VerletList list(options);
 
     std::vector<Eigen::Vector3d> truth = random_positions(rng, box, n);
@@ -469,9 +470,9 @@ TEST(VerletList, QuantitiesAndOffsets) {
     std::mt19937_64 rng(37);
     const auto x = random_positions(rng, cube10, 80);
     VerletOptions o;
-    o.cutoff = 2.5;
+    o.neighbors.cutoff = 2.5;
     o.skin = 0.3;
-    o.quantities = tricell::Quantities{false, false, false};
+    o.neighbors.quantities = tricell::Quantities{false, false, false};
     VerletList bare(o);
     bare.update(cube10, x);
     EXPECT_TRUE(bare.pairs().shifts().empty());
@@ -495,7 +496,7 @@ TEST(VerletList, QuantitiesAndOffsets) {
 TEST(VerletList, ErrorsNameTheValue) {
     auto with = [](double cutoff, double skin) {
         VerletOptions o;
-        o.cutoff = cutoff;
+        o.neighbors.cutoff = cutoff;
         o.skin = skin;
         return o;
     };
@@ -505,11 +506,14 @@ TEST(VerletList, ErrorsNameTheValue) {
     EXPECT_THROW_MSG(VerletList(with(2, std::numeric_limits<double>::infinity())), InvalidArgument,
                      "skin must be finite (got inf)");
     VerletOptions o = with(2, 0.1);
-    o.cells_per_cutoff = 0.5;
+    o.neighbors.cells_per_cutoff = 0.5;
     EXPECT_THROW_MSG(o.validate(), InvalidArgument, "cells_per_cutoff must be >= 1 (got 0.5)");
     o = with(2, 0.1);
-    o.threads = -2;
-    EXPECT_THROW_MSG(o.validate(), InvalidArgument, "threads must be >= 0 (got -2)");
+    o.neighbors.threads = -2;
+    EXPECT_THROW_MSG(o.validate(), InvalidArgument, "threads must be in [0, 1024] (got -2)");
+    o = with(2, 0.1);
+    o.neighbors.radii = {1.0};
+    EXPECT_THROW_MSG(o.validate(), InvalidArgument, "the Verlet list takes one cutoff");
     EXPECT_THROW_MSG(VerletList().update(cube10, std::vector<Eigen::Vector3d>{}), InvalidArgument,
                      "cutoff must be > 0 (got 0)");
 

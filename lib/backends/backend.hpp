@@ -1,0 +1,54 @@
+// The seam between the shared search (lib/neighbor_list.cpp) and the structures that find
+// candidate pairs. A backend does two things only: it bins the atoms (choosing the order in
+// which they are stored, so that its candidates are contiguous ranges) and it enumerates the
+// candidate (range, range, image shift) triples of a range of its work units (cells, buckets,
+// leaves) into a CandidateScanner. It never sees the caller's frame, the output layout, the
+// cutoff rule or threads; the shared part never knows how cells are stored.
+//
+// Adding a backend: a file here, a case in make_backend(), the choice in cost_model.cpp
+// (choose_backend) and the backend list of the typed property suite.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "detail/candidate_scan.hpp"
+#include "tricell/box.hpp"
+#include "tricell/neighbor_list.hpp"
+
+namespace tricell::detail {
+
+/// What every backend is given to bin: the search frame and the wrapped fractional positions.
+struct BinningInput {
+    const Box& frame;                               ///< the search frame (maybe reduced)
+    const std::vector<Eigen::Vector3d>& fractional; ///< in [0, 1) along periodic axes
+    Eigen::Vector3d lower, upper;                   ///< extent of the positions, per axis
+    double search_radius;                           ///< largest cutoff plus a rounding margin
+    const NeighborOptions& options;                 ///< tuning knobs (half, max_cells, ...)
+};
+
+class Backend {
+  public:
+    virtual ~Backend() = default;
+    /// Bins the atoms. order[k] is the caller's index of the k-th atom in the backend's order
+    /// (the order of the AtomTable that visit() will index).
+    virtual void bin(const BinningInput& input, std::vector<std::uint32_t>& order) = 0;
+    /// Work units that threads split (visited in this order; concatenating the pairs of
+    /// consecutive unit ranges gives the pairs of the whole range).
+    virtual std::size_t unit_count() const = 0;
+    /// Atoms of each unit, and the number of units each unit is paired with (its stencil), for
+    /// the work estimate from the occupancy moments (cost_model.hpp).
+    virtual void unit_occupancy(std::vector<double>& atoms, double& neighbours) const = 0;
+    /// Names the candidates of units [begin, end) to the scanner.
+    virtual void visit(std::size_t begin, std::size_t end, CandidateScanner& scan) const = 0;
+    /// Fills the backend-specific fields of info (backend, cells, stored_cells).
+    virtual void describe(SearchInfo& info) const = 0;
+};
+
+std::unique_ptr<Backend> make_backend(SearchBackend kind);
+
+} // namespace tricell::detail

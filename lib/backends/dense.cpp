@@ -1,0 +1,106 @@
+// The dense backend: every cell of a CellGrid exists (at most max_cells of them, so memory
+// follows the atoms), the atoms are counting-sorted by cell (SortedCellList), and each cell is
+// paired with the stencil row by row. With c varying fastest, the neighbour cells of one row are
+// consecutive in the sorted order, so a row is one contiguous range of atoms, split only where
+// it wraps around the c axis (each piece with its own image shift). The work units are cells.
+#include <algorithm>
+
+#include "backends/backend.hpp"
+#include "backends/grid_neighbourhood.hpp"
+#include "tricell/cell_list.hpp"
+
+namespace tricell::detail {
+
+namespace {
+
+class DenseBackend final : public Backend {
+  public:
+    void bin(const BinningInput& input, std::vector<std::uint32_t>& order) override {
+        const std::size_t n = input.fractional.size();
+        cells_.build(input, input.options.max_cells != 0 ? input.options.max_cells : 4 * n + 64,
+                     true);
+        std::vector<std::uint32_t> cell_of(n);
+        for (std::size_t i = 0; i < n; ++i) {
+            cell_of[i] = static_cast<std::uint32_t>(cells_.grid().cell_of(input.fractional[i]));
+        }
+        sorted_.build(cell_of, cells_.grid().cell_count());
+        order = sorted_.order();
+    }
+
+    std::size_t unit_count() const override { return cells_.grid().cell_count(); }
+
+    void unit_occupancy(std::vector<double>& atoms, double& neighbours) const override {
+        atoms.resize(unit_count());
+        for (std::size_t c = 0; c < atoms.size(); ++c) {
+            atoms[c] = double(sorted_.cell_end(c) - sorted_.cell_start(c));
+        }
+        neighbours = double(cells_.stencil().size());
+    }
+
+    void visit(std::size_t begin, std::size_t end, CandidateScanner& scan) const override {
+        const std::array<int, 3>& n = cells_.grid().dims();
+        const bool periodic_c = cells_.grid().periodicity()[2];
+        for (std::size_t c1 = begin; c1 < end; ++c1) {
+            const std::uint32_t begin1 = sorted_.cell_start(c1), end1 = sorted_.cell_end(c1);
+            if (begin1 == end1) {
+                continue;
+            }
+            const std::array<int, 3> c = cells_.coordinates(c1);
+            for (const StencilRow& row : cells_.rows()) {
+                const int na = cells_.neighbour_cell(0, c[0] + row.da);
+                const int nb = cells_.neighbour_cell(1, c[1] + row.db);
+                if (na < 0 || nb < 0) {
+                    continue; // beyond the end of an open axis
+                }
+                const int sa = cells_.neighbour_shift(0, c[0] + row.da);
+                const int sb = cells_.neighbour_shift(1, c[1] + row.db);
+                const std::size_t column = cells_.grid().flat(na, nb, 0);
+                const bool own_row = row.da == 0 && row.db == 0;
+                // Walk t = c + dc over the row, one piece per image along c.
+                int t = c[2] + row.dc_lo;
+                const int t_end = c[2] + row.dc_hi;
+                if (!periodic_c) {
+                    t = std::max(t, 0);
+                }
+                while (t <= t_end) {
+                    int sc = 0, first = t, last = t_end;
+                    if (periodic_c) {
+                        sc = floor_div(t, n[2]);
+                        first = t - sc * n[2];
+                        last = std::min(t_end - sc * n[2], n[2] - 1);
+                    } else {
+                        last = std::min(t_end, n[2] - 1);
+                        if (first > last) {
+                            break;
+                        }
+                    }
+                    t += last - first + 1;
+                    const std::uint32_t begin2 = sorted_.cell_start(column + std::size_t(first));
+                    const std::uint32_t end2 = sorted_.cell_end(column + std::size_t(last));
+                    if (begin2 != end2) {
+                        const bool own = own_row && sc == 0 && first <= c[2] && c[2] <= last;
+                        scan.ranges(begin1, end1, begin2, end2, scan.shift(sa, sb, sc), own);
+                    }
+                }
+            }
+        }
+    }
+
+    void describe(SearchInfo& info) const override {
+        info.backend = SearchBackend::dense;
+        info.cells = cells_.grid().dims();
+        info.stored_cells = cells_.grid().cell_count();
+    }
+
+  private:
+    GridNeighbourhood cells_;
+    SortedCellList sorted_;
+};
+
+} // namespace
+
+std::unique_ptr<Backend> make_dense_backend() {
+    return std::make_unique<DenseBackend>();
+}
+
+} // namespace tricell::detail

@@ -1,0 +1,58 @@
+#include "backends/grid_neighbourhood.hpp"
+
+#include <algorithm>
+
+namespace tricell::detail {
+
+void GridNeighbourhood::build(const BinningInput& input, std::size_t max_cells, bool tables) {
+    GridOptions grid_options;
+    grid_options.search_radius = input.search_radius;
+    grid_options.cells_per_cutoff = input.options.cells_per_cutoff;
+    grid_options.max_cells = max_cells;
+    grid_ = CellGrid(input.frame, grid_options, input.lower, input.upper);
+
+    // Exact pruning solves a small quadratic problem per boundary offset (~1000 instructions);
+    // worth it only when an offset leads to more distance tests than that, about N^2 / C / 5.
+    const double n = double(input.fractional.size());
+    const double cells = double(grid_.dims()[0]) * grid_.dims()[1] * grid_.dims()[2];
+    const bool exact_pruning = n * n / cells > 200;
+    stencil_ = input.options.half
+                   ? Stencil::half(grid_, input.frame, input.search_radius, exact_pruning)
+                   : Stencil::full(grid_, input.frame, input.search_radius, exact_pruning);
+    // Rows: for each (da, db), the hull of its dc (a superset of the kept offsets is always
+    // correct; in practice the kept dc already form an interval).
+    rows_.clear();
+    for (const CellOffset& d : stencil_.offsets()) {
+        auto row = std::find_if(rows_.begin(), rows_.end(),
+                                [&](const StencilRow& r) { return r.da == d[0] && r.db == d[1]; });
+        if (row == rows_.end()) {
+            rows_.push_back(StencilRow{d[0], d[1], d[2], d[2]});
+        } else {
+            row->dc_lo = std::min(row->dc_lo, d[2]);
+            row->dc_hi = std::max(row->dc_hi, d[2]);
+        }
+    }
+    for (int k = 0; k < 3; ++k) {
+        neighbour_cell_[k].clear();
+        neighbour_shift_[k].clear();
+        if (!tables) {
+            continue;
+        }
+        const int count = grid_.dims()[std::size_t(k)];
+        const int reach = grid_.reach()[std::size_t(k)];
+        neighbour_cell_[k].resize(std::size_t(count + 2 * reach));
+        neighbour_shift_[k].resize(std::size_t(count + 2 * reach));
+        for (int t = -reach; t < count + reach; ++t) {
+            const std::size_t slot = std::size_t(t + reach);
+            if (input.frame.periodic(k)) {
+                neighbour_cell_[k][slot] = floor_mod(t, count);
+                neighbour_shift_[k][slot] = floor_div(t, count);
+            } else {
+                neighbour_cell_[k][slot] = (t >= 0 && t < count) ? t : -1;
+                neighbour_shift_[k][slot] = 0;
+            }
+        }
+    }
+}
+
+} // namespace tricell::detail
