@@ -70,6 +70,30 @@ DoubleArray per_atom_array(const py::handle& values, std::size_t atoms, const ch
     return a;
 }
 
+std::vector<std::int32_t> per_atom_species(const py::handle& values, std::size_t atoms) {
+    const py::array a = py::array::ensure(values);
+    if (!a || (a.size() > 0 && a.dtype().kind() != 'i' && a.dtype().kind() != 'u')) {
+        PyErr_Clear();
+        value_error("species must be integers, one per atom (got " +
+                    py::repr(values).cast<std::string>().substr(0, 80) + ")");
+    }
+    if (a.ndim() != 1 || static_cast<std::size_t>(a.shape(0)) != atoms) {
+        value_error("species must have one value per atom, shape (" + std::to_string(atoms) +
+                    ",) (got shape " + shape_of(a) + ")");
+    }
+    const auto wide = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>(a);
+    std::vector<std::int32_t> out(atoms);
+    for (std::size_t k = 0; k < atoms; ++k) {
+        const std::int64_t v = wide.data()[k];
+        if (v < INT32_MIN || v > INT32_MAX) {
+            value_error("species[" + std::to_string(k) + "] does not fit a 32-bit integer (got " +
+                        std::to_string(v) + ")");
+        }
+        out[k] = static_cast<std::int32_t>(v);
+    }
+    return out;
+}
+
 Box box_from_rows(const py::handle& box, const py::handle& periodic) {
     auto a = DoubleArray::ensure(box);
     if (!a) {

@@ -11,8 +11,10 @@
 // P (N x 2 pairs (i, j), always a fresh array since i and j are stored apart).
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -31,6 +33,9 @@ DoubleArray points_array(const py::handle& points, const char* name = "points");
 
 /// N values (one per atom) from any array-like, checked against the atom count.
 DoubleArray per_atom_array(const py::handle& values, std::size_t atoms, const char* name);
+
+/// N integer species (one per atom) from any array-like of integers.
+std::vector<std::int32_t> per_atom_species(const py::handle& values, std::size_t atoms);
 
 /// A Box from lattice vectors as the rows of a 3 x 3 array-like, and `periodic` given as one
 /// bool or three.

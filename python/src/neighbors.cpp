@@ -27,21 +27,68 @@ namespace {
 
 class PyNeighborList {
   public:
-    PyNeighborList(double cutoff, bool full, bool sorted, int threads) {
-        options_.cutoff = cutoff;
+    // cutoff: a float (one cutoff), a dict {(species a, species b): cutoff} (a per-species-pair
+    // table; compute() then needs species=) or None (compute() then needs radii=).
+    PyNeighborList(const py::object& cutoff, bool full, bool sorted, int threads,
+                   const std::string& backend) {
+        if (py::isinstance<py::dict>(cutoff)) {
+            for (const auto& entry : cutoff.cast<py::dict>()) {
+                try {
+                    const auto key = entry.first.cast<std::pair<std::int32_t, std::int32_t>>();
+                    options_.species_cutoffs.push_back(
+                        SpeciesCutoff{key.first, key.second, entry.second.cast<double>()});
+                } catch (const py::cast_error&) {
+                    throw py::value_error("a cutoff dict maps pairs of integer species to "
+                                          "cutoffs (got " +
+                                          py::repr(entry.first).cast<std::string>() + ": " +
+                                          py::repr(entry.second).cast<std::string>() + ")");
+                }
+            }
+            if (options_.species_cutoffs.empty()) {
+                throw py::value_error("the cutoff dict of species pairs is empty");
+            }
+        } else if (!cutoff.is_none()) {
+            options_.cutoff = cutoff.cast<double>();
+        }
+        per_atom_radii_ = cutoff.is_none();
         options_.half = !full;
         options_.sorted = sorted;
         options_.threads = threads;
-        options_.validate();
+        options_.backend = parse_backend(backend);
+        if (!per_atom_radii_) {
+            options_.validate();
+        }
     }
 
     py::object compute(const py::handle& points, const py::handle& box, const py::handle& periodic,
-                       const std::string& quantities, bool copy) {
+                       const std::string& quantities, bool copy, const py::handle& radii,
+                       const py::handle& species) {
         const DoubleArray x = points_array(points);
         const Box search_box = box_from_rows(box, periodic);
         NeighborOptions options = options_;
         options.quantities = parse_quantities(quantities);
-        const PointsView view(x.data(), static_cast<std::size_t>(x.shape(0)));
+        const auto n = static_cast<std::size_t>(x.shape(0));
+        const PointsView view(x.data(), n);
+        if (per_atom_radii_ == radii.is_none()) {
+            throw py::value_error(per_atom_radii_
+                                      ? "radii= is needed: this NeighborList was made with "
+                                        "cutoff=None (per-atom radii)"
+                                      : "radii= is only for a NeighborList made with cutoff=None");
+        }
+        if (options.species_cutoffs.empty() != species.is_none()) {
+            throw py::value_error(species.is_none()
+                                      ? "species= is needed: this NeighborList was made with a "
+                                        "cutoff dict of species pairs"
+                                      : "species= is only for a NeighborList made with a cutoff "
+                                        "dict of species pairs");
+        }
+        if (!radii.is_none()) {
+            const DoubleArray r = per_atom_array(radii, n, "radii");
+            options.radii.assign(r.data(), r.data() + n);
+        }
+        if (!species.is_none()) {
+            options.species = per_atom_species(species, n);
+        }
 
         std::shared_ptr<NeighborList> list;
         {
@@ -54,7 +101,6 @@ class PyNeighborList {
         return pair_columns(*list, quantities, copy ? nullptr : list);
     }
 
-    double cutoff() const { return options_.cutoff; }
     bool full() const { return !options_.half; }
     bool sorted() const { return options_.sorted; }
     int threads() const { return options_.threads; }
@@ -84,6 +130,7 @@ class PyNeighborList {
     }
 
     NeighborOptions options_;
+    bool per_atom_radii_ = false;
     NeighborSearch search_;
     std::vector<std::shared_ptr<NeighborList>> pool_;
     std::mutex mutex_;
@@ -92,11 +139,11 @@ class PyNeighborList {
 class PyVerletList {
   public:
     PyVerletList(double cutoff, double skin, bool full, int threads) {
-        options_.cutoff = cutoff;
+        options_.neighbors.cutoff = cutoff;
         options_.skin = skin;
-        options_.half = !full;
-        options_.threads = threads;
-        options_.quantities.vectors = true;
+        options_.neighbors.half = !full;
+        options_.neighbors.threads = threads;
+        options_.neighbors.quantities.vectors = true;
         list_ = VerletList(options_);
     }
 
@@ -114,7 +161,7 @@ class PyVerletList {
         return pair_columns(list_.pairs(), quantities, nullptr);
     }
 
-    double cutoff() const { return options_.cutoff; }
+    double cutoff() const { return options_.neighbors.cutoff; }
     double skin() const { return options_.skin; }
     bool rebuilt() const { return rebuilt_; }
     std::size_t rebuild_count() const { return list_.rebuild_count(); }
@@ -132,16 +179,22 @@ void bind_neighbors(py::module_& m) {
     py::class_<PyNeighborList>(m, "NeighborList", R"doc(
 Periodic neighbour list in a triclinic box (CONTRACT.md section 2).
 
-NeighborList(cutoff, full=True, sorted=False, threads=1)
+NeighborList(cutoff, full=True, sorted=False, threads=1, backend="auto")
 
 Pairs (i, j, S) with |D| < cutoff, D = points[j] - points[i] + S @ box, except (i, i, 0).
+cutoff may also be a dict {(a, b): cutoff} of integer species pairs (symmetric; a pair of
+species missing from it never counts; compute() then takes species=, one per point), or None
+for per-atom radii (compute() then takes radii=; a pair counts when d < r_i + r_j).
 full=False keeps each pair once (i < j, or i == j with S lexicographically positive).
 sorted=True orders pairs by i, then j, then S. threads=0 uses every core; the result is
-identical for any thread count.)doc")
-        .def(py::init<double, bool, bool, int>(), py::arg("cutoff"), py::arg("full") = true,
-             py::arg("sorted") = false, py::arg("threads") = 1)
+identical for any thread count. backend ("auto", "dense", "linked", "hash", "octree") changes
+only the speed.)doc")
+        .def(py::init<const py::object&, bool, bool, int, const std::string&>(), py::arg("cutoff"),
+             py::arg("full") = true, py::arg("sorted") = false, py::arg("threads") = 1,
+             py::arg("backend") = "auto")
         .def("compute", &PyNeighborList::compute, py::arg("points"), py::arg("box"),
              py::arg("periodic") = true, py::arg("quantities") = "ijSd", py::arg("copy") = true,
+             py::arg("radii") = py::none(), py::arg("species") = py::none(),
              R"doc(
 Computes the list for N x 3 Cartesian points (anywhere, also outside the box) and a 3 x 3 box
 with the lattice vectors as rows; periodic is one bool or three. Returns numpy arrays in the
@@ -149,7 +202,6 @@ order of the letters of quantities: i, j (uint32), S (int32, N x 3), d (float64)
 N x 3), P (uint32, N x 2 pairs (i, j)); one letter returns one array. copy=False returns views
 of the list's own buffers instead of copies (P is always a new array); a view stays valid as
 long as it exists, and later calls never write into memory a view still refers to.)doc")
-        .def_property_readonly("cutoff", &PyNeighborList::cutoff)
         .def_property_readonly("full", &PyNeighborList::full)
         .def_property_readonly("sorted", &PyNeighborList::sorted)
         .def_property_readonly("threads", &PyNeighborList::threads);

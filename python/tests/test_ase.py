@@ -58,6 +58,19 @@ def test_self_interaction_and_letter_order(seed):
     assert np.sum((i == j) & (S == 0).all(axis=1)) == len(atoms)
 
 
+@pytest.mark.parametrize("seed", range(8))
+def test_self_interaction_with_radii_and_dicts_follows_each_atoms_own_cutoff(seed):
+    atoms, cutoff = atoms_for(seed, atoms=12)
+    rng = np.random.default_rng(3000 + seed)
+    radii = rng.uniform(0.1, 0.5, len(atoms)) * cutoff
+    radii[::3] = 0.0  # atoms with radius 0 are not their own neighbours in ASE
+    table = {("H", "H"): cutoff, ("O", "Si"): 0.8 * cutoff, ("O", "O"): 0.0}
+    for c in (radii, table):
+        mine, theirs = both("ijSd", atoms, c, self_interaction=True)
+        keep = lambda cols: drop_near(cutoff, 1e-9, *cols)
+        assert_same_pairs(keep(mine), keep(sort_pairs(*theirs)), f"seed {seed}")
+
+
 def test_dtypes_shapes_and_single_letters():
     atoms, cutoff = atoms_for(5, atoms=12)
     for q in "ijdDS":

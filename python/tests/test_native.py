@@ -194,6 +194,50 @@ def test_errors_carry_the_library_message():
         tricell.VerletList(1.0, -0.5)
 
 
+@pytest.mark.parametrize("seed", range(16))
+def test_radii_and_species_tables_match_ase_full_and_half(seed):
+    cell, positions, pbc, cutoff, numbers = random_system(seed)
+    rng = np.random.default_rng(4000 + seed)
+    radii = rng.uniform(0.0, 0.6, len(positions)) * cutoff
+    table = {(1, 1): 0.7 * cutoff, (8, 1): 0.9 * cutoff, (14, 8): cutoff, (14, 14): 0.5 * cutoff}
+    ase_table = {(a, b): c for (a, b), c in table.items()}
+    for how, native, peer in (("radii", dict(radii=radii), radii),
+                              ("table", dict(species=numbers), ase_table)):
+        nl = tricell.NeighborList(None if how == "radii" else table, sorted=True)
+        mine = nl.compute(positions, cell, pbc, "ijSdD", **native)
+        theirs = sort_pairs(*ase_nl.primitive_neighbor_list("ijSdD", pbc, cell, positions, peer,
+                                                            numbers=numbers))
+        assert_same_pairs(mine, theirs, f"seed {seed}, {how}")
+        half = tricell.NeighborList(None if how == "radii" else table, full=False)
+        i, j, S, d = half.compute(positions, cell, pbc, "ijSd", **native)
+        # Each pair of the full list once: with its reverse, the half list is the full list.
+        both_ways = sort_pairs(np.concatenate([i, j]), np.concatenate([j, i]),
+                               np.concatenate([S, -S]), np.concatenate([d, d]))
+        assert_same_pairs(both_ways, mine[:4], f"seed {seed}, {how}, half")
+
+
+def test_variable_cutoff_errors():
+    x = np.random.default_rng(0).random((6, 3))
+    with pytest.raises(ValueError, match="radii= is needed"):
+        tricell.NeighborList(None).compute(x, np.eye(3))
+    with pytest.raises(ValueError, match="radii= is only for"):
+        tricell.NeighborList(1.0).compute(x, np.eye(3), radii=np.ones(6))
+    with pytest.raises(ValueError, match="species= is needed"):
+        tricell.NeighborList({(1, 1): 1.0}).compute(x, np.eye(3))
+    with pytest.raises(ValueError, match="one value per atom"):
+        tricell.NeighborList(None).compute(x, np.eye(3), radii=np.ones(5))
+    with pytest.raises(ValueError, match=r"radii\[2\] must be finite and >= 0"):
+        tricell.NeighborList(None).compute(x, np.eye(3), radii=[1, 1, -1, 1, 1, 1])
+    with pytest.raises(ValueError, match="species must be integers"):
+        tricell.NeighborList({(1, 1): 1.0}).compute(x, np.eye(3), species=np.ones(6) * 0.5)
+    with pytest.raises(ValueError, match="pairs of integer species"):
+        tricell.NeighborList({("H", "H"): 1.0})
+    with pytest.raises(ValueError, match="empty"):
+        tricell.NeighborList({})
+    with pytest.raises(ValueError, match="species_cutoffs"):
+        tricell.NeighborList({(1, 1): -1.0})
+
+
 def test_read_matches_ase_for_poscar_and_extxyz(source_dir):
     from ase.io import read as ase_read
 

@@ -41,15 +41,19 @@ def _empty(quantities):
 
 
 def _species_table(cutoff):
-    """ASE's dict of element pairs as {(Z_a, Z_b): cutoff} with Z_a <= Z_b."""
+    """ASE's dict of element pairs as {(Z_a, Z_b): cutoff} with Z_a <= Z_b: a later key for
+    the same two elements replaces an earlier one, and pairs that can never count in ASE
+    (cutoff <= 0, a name that is no element) are left out."""
     from ase.data import atomic_numbers
 
     table = {}
     for (a, b), value in cutoff.items():
         a = atomic_numbers.get(a, a)
         b = atomic_numbers.get(b, b)
+        if isinstance(a, str) or isinstance(b, str):
+            continue
         table[(min(a, b), max(a, b))] = float(value)
-    return table
+    return {pair: value for pair, value in table.items() if value > 0}
 
 
 def primitive_neighbor_list(quantities, pbc, cell, positions, cutoff, numbers=None,
@@ -76,16 +80,24 @@ def primitive_neighbor_list(quantities, pbc, cell, positions, cutoff, numbers=No
     if isinstance(cutoff, dict):
         if numbers is None:
             raise ValueError("a cutoff dict of element pairs needs the atomic numbers (numbers=)")
-        search = NeighborList(_species_table(cutoff), sorted=True)
+        table = _species_table(cutoff)
+        if not table:
+            return _empty(quantities)
+        search = NeighborList(table, sorted=True)
         extra = {"species": np.asarray(numbers)}
+        # An atom and itself (d = 0) count when its element pair with itself has a cutoff.
+        has_self = np.array([table.get((z, z), 0) > 0 for z in np.asarray(numbers).tolist()],
+                            dtype=bool)
     elif np.isscalar(cutoff):
         if not cutoff > 0:
             return _empty(quantities)  # ASE keeps d < cutoff: nothing for a cutoff <= 0
         search = NeighborList(float(cutoff), sorted=True)
         extra = {}
+        has_self = np.ones(len(positions), dtype=bool)
     else:
         search = NeighborList(None, sorted=True)
         extra = {"radii": np.asarray(cutoff, dtype=float)}
+        has_self = extra["radii"] > 0
     found = search.compute(positions, complete_cell(cell), pbc, needed, **extra)
     columns = dict(zip(needed, found))
     columns["i"] = columns["i"].astype(np.int64)
@@ -93,13 +105,14 @@ def primitive_neighbor_list(quantities, pbc, cell, positions, cutoff, numbers=No
     if "S" in columns:
         columns["S"] = columns["S"].astype(np.int64)
     if self_interaction:
-        columns = _with_self_pairs(columns, len(positions))
+        columns = _with_self_pairs(columns, np.flatnonzero(has_self))
     return _result(quantities, columns)
 
 
-def _with_self_pairs(columns, n):
-    """Adds (k, k, S = 0) with d = 0, D = 0 for every atom, keeping the order by i, j, S."""
-    atoms = np.arange(n, dtype=np.int64)
+def _with_self_pairs(columns, atoms):
+    """Adds (k, k, S = 0) with d = 0, D = 0 for the given atoms, keeping the order by i, j, S."""
+    atoms = atoms.astype(np.int64)
+    n = len(atoms)
     zeros = {"i": atoms, "j": atoms, "S": np.zeros((n, 3), np.int64),
              "d": np.zeros(n), "D": np.zeros((n, 3))}
     merged = {q: np.concatenate([columns[q], zeros[q]]) for q in columns}
