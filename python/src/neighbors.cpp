@@ -48,7 +48,13 @@ class PyNeighborList {
                 throw py::value_error("the cutoff dict of species pairs is empty");
             }
         } else if (!cutoff.is_none()) {
-            options_.cutoff = cutoff.cast<double>();
+            try {
+                options_.cutoff = cutoff.cast<double>();
+            } catch (const py::cast_error&) {
+                throw py::value_error("cutoff must be a number, a dict of species pairs or None "
+                                      "(got " +
+                                      py::repr(cutoff).cast<std::string>() + ")");
+            }
         }
         per_atom_radii_ = cutoff.is_none();
         options_.half = !full;

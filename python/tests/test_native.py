@@ -123,6 +123,21 @@ def test_threads_give_the_identical_list():
             np.testing.assert_array_equal(a, b)
 
 
+@pytest.mark.parametrize("seed", range(6))
+def test_every_backend_gives_the_same_list(seed):
+    cell, positions, pbc, cutoff, _ = random_system(seed, atoms=60)
+    expected = tricell.NeighborList(cutoff, sorted=True).compute(positions, cell, pbc, "ijSdD")
+    for backend in ("dense", "linked", "hash", "octree"):
+        nl = tricell.NeighborList(cutoff, sorted=True, backend=backend)
+        try:
+            got = nl.compute(positions, cell, pbc, "ijSdD")
+        except ValueError as error:  # a backend announced but not in the library yet
+            assert "not built yet" in str(error), str(error)
+            continue
+        for g, e in zip(got, expected):
+            np.testing.assert_array_equal(g, e, err_msg=f"seed {seed}, {backend}")
+
+
 def test_concurrent_calls_from_python_threads():
     cell, positions, pbc, cutoff, _ = random_system(6, atoms=300, kind="triclinic",
                                                    pbc=(True, True, True))
@@ -234,6 +249,10 @@ def test_variable_cutoff_errors():
         tricell.NeighborList({("H", "H"): 1.0})
     with pytest.raises(ValueError, match="empty"):
         tricell.NeighborList({})
+    with pytest.raises(ValueError, match="cutoff must be a number"):
+        tricell.NeighborList("5")
+    with pytest.raises(ValueError, match="backend"):
+        tricell.NeighborList(1.0, backend="quantum")
     with pytest.raises(ValueError, match="species_cutoffs"):
         tricell.NeighborList({(1, 1): -1.0})
 
