@@ -25,6 +25,13 @@ double region_work(const OccupancyMoments& m, double neighbours, const Occupancy
            costs.per_test * neighbours * m.atoms_sq;
 }
 
+double expected_pairs(double atoms, double volume, double sphere) {
+    if (!(volume > 0) || !(atoms > 0)) {
+        return 0;
+    }
+    return atoms * atoms / volume * sphere;
+}
+
 std::vector<std::size_t> split_work(const std::vector<double>& work, std::size_t parts) {
     std::vector<std::size_t> bounds{0};
     const std::size_t units = work.size();

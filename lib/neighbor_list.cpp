@@ -11,6 +11,8 @@
 #include <numeric>
 #include <thread>
 
+#include <Eigen/LU>
+
 #include "backends/backend.hpp"
 #include "detail/lattice_reduction.hpp"
 #include "detail/list_writer.hpp"
@@ -35,7 +37,10 @@ struct SearchState {
     double estimated_pairs = 0;
     CutoffRule rule;
     AtomTable atoms;
-    std::unique_ptr<Backend> backend; // null when no pair can count (all radii zero, ...)
+    // The backend of the last build, null when no pair can count (all radii zero, ...). Each
+    // kind's object is kept between builds so that its buffers are reused.
+    Backend* backend = nullptr;
+    std::unique_ptr<Backend> pool[5];
 };
 
 } // namespace detail
@@ -291,7 +296,7 @@ void NeighborSearch::build(const Box& caller_box, PointsView positions,
         state = std::make_unique<detail::SearchState>();
     }
     detail::SearchState& s = *state;
-    s.backend.reset();
+    s.backend = nullptr;
     s.rule.set(options, n);
     s.options = options;
     const Box box = search_frame(caller_box, options.reduce_cell, s.to_caller);
@@ -352,7 +357,11 @@ void NeighborSearch::build(const Box& caller_box, PointsView positions,
     if (kind == SearchBackend::automatic) {
         kind = automatic_backend(box, lower, upper, s.search_radius, options, n);
     }
-    s.backend = detail::make_backend(kind);
+    std::unique_ptr<detail::Backend>& pooled = s.pool[static_cast<int>(kind)];
+    if (!pooled) {
+        pooled = detail::make_backend(kind);
+    }
+    s.backend = pooled.get();
     std::vector<std::uint32_t> order;
     s.backend->bin(detail::BinningInput{box, fractional, lower, upper, s.search_radius, options},
                    order);
@@ -493,18 +502,31 @@ void NeighborSearch::compute(NeighborList& out) const {
     try {
         // Contiguous chunks of units of about equal work (from the occupancy moments); chunk t
         // goes to thread t and the chunks are concatenated in unit order, so the result does not
-        // depend on `threads`.
+        // depend on `threads`. Each chunk reserves room for the pairs its occupancy predicts
+        // (untouched reserved memory is never resident), so the columns rarely grow.
+        detail::UnitOccupancy occupancy;
+        s.backend->occupancy(occupancy);
         std::vector<std::size_t> bounds{0, units};
         if (threads > 1) {
-            std::vector<double> atoms;
-            double neighbours = 0;
-            s.backend->unit_occupancy(atoms, neighbours);
-            for (double& w : atoms) {
-                w = occupancy_work(w, neighbours);
+            std::vector<double> work(units);
+            for (std::size_t u = 0; u < units; ++u) {
+                work[u] = occupancy_work(occupancy.atoms[u], occupancy.neighbours);
             }
-            bounds = split_work(atoms, threads);
+            bounds = split_work(work, threads);
         }
         const std::size_t chunks = bounds.size() - 1;
+        const double sphere = 4.0 / 3.0 * pi * std::pow(s.rule.max_cutoff(), 3);
+        const double box_volume = std::abs(s.h.determinant());
+        std::vector<std::size_t> reserve(chunks);
+        for (std::size_t t = 0; t < chunks; ++t) {
+            double expected = 0;
+            for (std::size_t u = bounds[t]; u < bounds[t + 1]; ++u) {
+                expected +=
+                    expected_pairs(occupancy.atoms[u], occupancy.volume[u] * box_volume, sphere);
+            }
+            expected *= s.options.half ? 0.5 : 1.0;
+            reserve[t] = static_cast<std::size_t>(std::min(expected * 1.1 + 1024, 2e8));
+        }
 
         // Chunk 0 writes straight into `out`, the others into their own lists.
         std::vector<NeighborList> partial;
@@ -512,7 +534,6 @@ void NeighborSearch::compute(NeighborList& out) const {
         partial.resize(chunks - 1);
         std::vector<std::size_t> sizes(chunks, 0);
         std::vector<std::exception_ptr> errors(chunks);
-        const double share = std::min(s.estimated_pairs * 1.05 + 16, 1e8) / double(chunks);
         auto run_chunk = [&](std::size_t t) {
             try {
                 NeighborList& list = t == 0 ? out : partial[t - 1];
@@ -521,8 +542,7 @@ void NeighborSearch::compute(NeighborList& out) const {
                                                   q.distances ? &ListWriter::distances(list)
                                                               : nullptr,
                                                   q.vectors ? &ListWriter::vectors(list) : nullptr};
-                detail::PairSink sink(columns, s.options.max_pairs,
-                                      static_cast<std::size_t>(share));
+                detail::PairSink sink(columns, s.options.max_pairs, reserve[t]);
                 detail::CandidateScanner scan(s.atoms, s.h, s.cutoff_sq, s.rule, s.options.half,
                                               s.to_caller, s.reduced_frame, sink);
                 s.backend->visit(bounds[t], bounds[t + 1], scan);
@@ -598,6 +618,31 @@ SearchInfo NeighborSearch::info() const {
                                                                      : s.options.backend;
     }
     return info;
+}
+
+UnitWork NeighborSearch::unit_work() const {
+    UnitWork work;
+    if (!state_ || !state_->backend) {
+        return work;
+    }
+    const detail::SearchState& s = *state_;
+    detail::UnitOccupancy occupancy;
+    s.backend->occupancy(occupancy);
+    const std::size_t units = s.backend->unit_count();
+    work.atoms = occupancy.atoms;
+    work.estimated.resize(units);
+    work.measured.resize(units);
+    auto discard = [](void*, const PairBlock&) {};
+    detail::PairSink sink(discard, nullptr, s.to_caller, false);
+    for (std::size_t u = 0; u < units; ++u) {
+        work.estimated[u] = occupancy_work(occupancy.atoms[u], occupancy.neighbours);
+        detail::CandidateScanner scan(s.atoms, s.h, s.cutoff_sq, s.rule, s.options.half,
+                                      s.to_caller, s.reduced_frame, sink);
+        s.backend->visit(u, u + 1, scan);
+        work.measured[u] = double(scan.tests());
+    }
+    sink.finish();
+    return work;
 }
 
 double NeighborSearch::estimated_pairs() const {

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include <tricell/error.hpp>
 #include <tricell/neighbor_list.hpp>
 
 #include "cli.hpp"
@@ -22,11 +23,13 @@ namespace {
 
 const char* const help =
     R"(usage: tricell bench FILE --cutoff R [--half] [--quantities ijSdD] [--repeat K]
-                     [--threads T] [--input-format cif|xyz|poscar]
+                     [--threads T] [--backend B] [--input-format cif|xyz|poscar]
 
 Times tricell's neighbour list of FILE: one warm-up call, then K timed calls (default 10) into
-a reused list. Prints pairs, median_s, min_s, pairs_per_s, list_mb (the stored arrays) and
-peak_rss_mb (peak resident memory of the whole process), one "key value" per line.
+a reused list. Prints pairs, median_s, min_s, pairs_per_s, list_mb (the stored arrays),
+base_rss_mb (resident memory after reading FILE, before any search), peak_rss_mb (peak
+resident memory of the whole process), the backend that ran and the cells it stored, one
+"key value" per line.
 
 Options:
   --cutoff R          cutoff, R > 0 (required)
@@ -35,6 +38,7 @@ Options:
                       D (vectors); default "ijSd"
   --repeat K          timed calls, K >= 1 (default 10)
   --threads T         threads, T >= 0, 0 = all hardware threads (default 1)
+  --backend B         auto (default), dense, linked, hash or octree
   --input-format F    cif, xyz or poscar, instead of the guess from the file name
   -h, --help          this help
 )";
@@ -101,6 +105,13 @@ int run_bench(const std::vector<std::string>& args) {
                                arguments.value() + "'");
             }
             options.threads = int(t);
+        } else if (arguments.option("--backend")) {
+            const std::string name = arguments.value();
+            try {
+                options.backend = parse_backend(name);
+            } catch (const InvalidArgument& e) {
+                arguments.fail(std::string("--backend: ") + e.what());
+            }
         } else if (!take_input(arguments, read_options, file)) {
             arguments.unknown();
         }
@@ -112,6 +123,7 @@ int run_bench(const std::vector<std::string>& args) {
     options.validate();
 
     const io::Structure structure = io::read_structure(file, read_options);
+    const double base_rss = peak_rss_mb();
     NeighborList list;
     compute_neighbors(structure.box, structure.positions, options, list); // warm-up
     std::vector<double> seconds;
@@ -137,7 +149,13 @@ int run_bench(const std::vector<std::string>& args) {
     std::printf("min_s %.6g\n", seconds.front());
     std::printf("pairs_per_s %.6g\n", double(list.size()) / median);
     std::printf("list_mb %.3f\n", list_bytes / (1024.0 * 1024.0));
+    std::printf("base_rss_mb %.3f\n", base_rss);
     std::printf("peak_rss_mb %.3f\n", peak_rss_mb());
+    NeighborSearch search;
+    search.build(structure.box, structure.positions, options);
+    const SearchInfo info = search.info();
+    std::printf("backend %s\n", backend_name(info.backend));
+    std::printf("stored_cells %zu\n", info.stored_cells);
     return 0;
 }
 

@@ -64,6 +64,13 @@ struct OccupancyMoments {
 TRICELL_API double region_work(const OccupancyMoments& moments, double neighbours,
                                const OccupancyCosts& costs = OccupancyCosts());
 
+/// Expected pairs (full list) of the atoms of one cell of `atoms` atoms and real volume
+/// `volume`, for a search sphere of volume `sphere`: atoms * (atoms / volume) * sphere, the local
+/// density carried over the sphere. Summed over cells this is sphere * sum(n^2 / V_cell), the
+/// second moment again; it sizes the pair arrays before a search (an overestimate only reserves
+/// address space that is never touched).
+TRICELL_API double expected_pairs(double atoms, double volume, double sphere);
+
 /// Splits units 0..W.size()-1 into at most `parts` contiguous chunks of about equal total work.
 /// Returns the chunk boundaries: bounds[0] = 0, bounds.back() = W.size().
 TRICELL_API std::vector<std::size_t> split_work(const std::vector<double>& work, std::size_t parts);

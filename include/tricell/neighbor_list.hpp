@@ -206,6 +206,15 @@ struct SearchInfo {
     double search_radius = 0;            ///< the largest cutoff, plus a rounding margin
 };
 
+/// Work of each unit threads split (cells, buckets or leaves, in visiting order): its atoms, the
+/// occupancy-moment estimate compute() balances (cost_model.hpp) and the distance tests its
+/// candidates really cost. For load-balance benchmarks and tests.
+struct UnitWork {
+    std::vector<double> atoms;
+    std::vector<double> estimated;
+    std::vector<double> measured;
+};
+
 /// The search structure for one configuration. build() once, then compute() and/or
 /// for_each_pair(); rebuild when positions or the box change. An object can be reused to keep
 /// its buffers. Movable, not copyable.
@@ -245,6 +254,8 @@ class TRICELL_API NeighborSearch {
     void for_each_block(void (*on_block)(void*, const PairBlock&), void* context) const;
 
     SearchInfo info() const;
+    /// Per-unit work (see UnitWork); scans every candidate once without storing.
+    UnitWork unit_work() const;
     /// Expected number of pairs from the density (what max_pairs is checked against first).
     double estimated_pairs() const;
     std::size_t atom_count() const;

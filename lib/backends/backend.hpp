@@ -22,6 +22,15 @@
 
 namespace tricell::detail {
 
+/// Occupancy of every work unit: its atoms and its fractional volume (for the work and pair-count
+/// estimates from the occupancy moments, cost_model.hpp), and how many units a unit is paired
+/// with on average (its stencil).
+struct UnitOccupancy {
+    std::vector<double> atoms;
+    std::vector<double> volume;
+    double neighbours = 0;
+};
+
 /// What every backend is given to bin: the search frame and the wrapped fractional positions.
 struct BinningInput {
     const Box& frame;                               ///< the search frame (maybe reduced)
@@ -40,9 +49,8 @@ class Backend {
     /// Work units that threads split (visited in this order; concatenating the pairs of
     /// consecutive unit ranges gives the pairs of the whole range).
     virtual std::size_t unit_count() const = 0;
-    /// Atoms of each unit, and the number of units each unit is paired with (its stencil), for
-    /// the work estimate from the occupancy moments (cost_model.hpp).
-    virtual void unit_occupancy(std::vector<double>& atoms, double& neighbours) const = 0;
+    /// Atoms and fractional volume of each unit, and the units each is paired with.
+    virtual void occupancy(UnitOccupancy& out) const = 0;
     /// Names the candidates of units [begin, end) to the scanner.
     virtual void visit(std::size_t begin, std::size_t end, CandidateScanner& scan) const = 0;
     /// Fills the backend-specific fields of info (backend, cells, stored_cells).

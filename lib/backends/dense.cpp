@@ -29,12 +29,13 @@ class DenseBackend final : public Backend {
 
     std::size_t unit_count() const override { return cells_.grid().cell_count(); }
 
-    void unit_occupancy(std::vector<double>& atoms, double& neighbours) const override {
-        atoms.resize(unit_count());
-        for (std::size_t c = 0; c < atoms.size(); ++c) {
-            atoms[c] = double(sorted_.cell_end(c) - sorted_.cell_start(c));
+    void occupancy(UnitOccupancy& out) const override {
+        out.atoms.resize(unit_count());
+        for (std::size_t c = 0; c < out.atoms.size(); ++c) {
+            out.atoms[c] = double(sorted_.cell_end(c) - sorted_.cell_start(c));
         }
-        neighbours = double(cells_.stencil().size());
+        out.volume.assign(unit_count(), cells_.cell_volume());
+        out.neighbours = double(cells_.stencil().size());
     }
 
     void visit(std::size_t begin, std::size_t end, CandidateScanner& scan) const override {

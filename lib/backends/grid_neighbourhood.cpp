@@ -20,16 +20,20 @@ void GridNeighbourhood::build(const BinningInput& input, std::size_t max_cells, 
                    ? Stencil::half(grid_, input.frame, input.search_radius, exact_pruning)
                    : Stencil::full(grid_, input.frame, input.search_radius, exact_pruning);
     // Rows: for each (da, db), the hull of its dc (a superset of the kept offsets is always
-    // correct; in practice the kept dc already form an interval).
+    // correct; in practice the kept dc already form an interval), found through a table indexed
+    // by (da, db) so that wide stencils (cutoffs of many boxes) stay linear.
     rows_.clear();
+    const int ma = grid_.reach()[0], mb = grid_.reach()[1];
+    const std::size_t width = std::size_t(2 * mb + 1);
+    std::vector<int> row_of(std::size_t(2 * ma + 1) * width, -1);
     for (const CellOffset& d : stencil_.offsets()) {
-        auto row = std::find_if(rows_.begin(), rows_.end(),
-                                [&](const StencilRow& r) { return r.da == d[0] && r.db == d[1]; });
-        if (row == rows_.end()) {
+        int& row = row_of[std::size_t(d[0] + ma) * width + std::size_t(d[1] + mb)];
+        if (row < 0) {
+            row = int(rows_.size());
             rows_.push_back(StencilRow{d[0], d[1], d[2], d[2]});
         } else {
-            row->dc_lo = std::min(row->dc_lo, d[2]);
-            row->dc_hi = std::max(row->dc_hi, d[2]);
+            rows_[std::size_t(row)].dc_lo = std::min(rows_[std::size_t(row)].dc_lo, d[2]);
+            rows_[std::size_t(row)].dc_hi = std::max(rows_[std::size_t(row)].dc_hi, d[2]);
         }
     }
     for (int k = 0; k < 3; ++k) {

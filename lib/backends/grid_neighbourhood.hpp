@@ -38,6 +38,8 @@ class GridNeighbourhood {
     int neighbour_shift(int axis, int t) const {
         return neighbour_shift_[axis][std::size_t(t + grid_.reach()[std::size_t(axis)])];
     }
+    /// Fractional volume of one cell (the product of the cell sizes).
+    double cell_volume() const { return grid_.cell_size().prod(); }
     /// Cell coordinates of a flat cell index (c fastest).
     std::array<int, 3> coordinates(std::size_t cell) const {
         const std::array<int, 3>& n = grid_.dims();

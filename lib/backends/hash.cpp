@@ -68,12 +68,13 @@ class HashBackend final : public Backend {
 
     std::size_t unit_count() const override { return cell_.size(); }
 
-    void unit_occupancy(std::vector<double>& atoms, double& neighbours) const override {
-        atoms.resize(cell_.size());
+    void occupancy(UnitOccupancy& out) const override {
+        out.atoms.resize(cell_.size());
         for (std::size_t e = 0; e < cell_.size(); ++e) {
-            atoms[e] = double(start_[e + 1] - start_[e]);
+            out.atoms[e] = double(start_[e + 1] - start_[e]);
         }
-        neighbours = double(cells_.stencil().size());
+        out.volume.assign(cell_.size(), cells_.cell_volume());
+        out.neighbours = double(cells_.stencil().size());
     }
 
     void visit(std::size_t begin, std::size_t end, CandidateScanner& scan) const override {

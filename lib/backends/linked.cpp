@@ -29,14 +29,15 @@ class LinkedBackend final : public Backend {
 
     std::size_t unit_count() const override { return cells_.grid().cell_count(); }
 
-    void unit_occupancy(std::vector<double>& atoms, double& neighbours) const override {
-        atoms.assign(unit_count(), 0.0);
-        for (std::size_t c = 0; c < atoms.size(); ++c) {
+    void occupancy(UnitOccupancy& out) const override {
+        out.atoms.assign(unit_count(), 0.0);
+        for (std::size_t c = 0; c < out.atoms.size(); ++c) {
             for (auto a = linked_.head(c); a != LinkedCellList::end; a = linked_.next(a)) {
-                atoms[c] += 1;
+                out.atoms[c] += 1;
             }
         }
-        neighbours = double(cells_.stencil().size());
+        out.volume.assign(unit_count(), cells_.cell_volume());
+        out.neighbours = double(cells_.stencil().size());
     }
 
     void visit(std::size_t begin, std::size_t end, CandidateScanner& scan) const override {

@@ -60,46 +60,50 @@ std::vector<Coordination> coordination(const Structure& structure,
     for (Coordination& c : out) {
         c.nearest = std::numeric_limits<double>::quiet_NaN();
     }
-
-    // Species indices and a small table of squared cutoffs per pair of species.
-    std::map<std::string, std::size_t> index;
-    std::vector<std::size_t> species(n);
-    for (std::size_t k = 0; k < n; ++k) {
-        species[k] = index.emplace(structure.species[k], index.size()).first->second;
-    }
-    const std::size_t m = index.size();
-    std::vector<double> cutoff(m * m, options.cutoff);
-    double search = options.cutoff;
-    for (const BondCutoff& bond : options.bonds) {
-        const auto a = index.find(element_symbol(bond.a));
-        const auto b = index.find(element_symbol(bond.b));
-        search = std::max(search, bond.cutoff);
-        if (a != index.end() && b != index.end()) {
-            cutoff[a->second * m + b->second] = bond.cutoff;
-            cutoff[b->second * m + a->second] = bond.cutoff;
-        }
-    }
     if (n == 0) {
         return out;
     }
-
+    // The search counts each pair by its own cutoff: a species per element and a table with the
+    // bond cutoff of each element pair given, the general cutoff (when > 0) for all others.
+    std::map<std::string, std::int32_t> index;
     NeighborOptions neighbor_options;
-    neighbor_options.cutoff = search;
+    neighbor_options.species.resize(n);
+    for (std::size_t k = 0; k < n; ++k) {
+        neighbor_options.species[k] =
+            index.emplace(structure.species[k], std::int32_t(index.size())).first->second;
+    }
+    std::map<std::pair<std::int32_t, std::int32_t>, double> table;
+    for (const auto& [first, a] : index) {
+        for (const auto& [second, b] : index) {
+            if (a <= b && options.cutoff > 0) {
+                table[{a, b}] = options.cutoff;
+            }
+        }
+    }
+    for (const BondCutoff& bond : options.bonds) {
+        const auto a = index.find(element_symbol(bond.a));
+        const auto b = index.find(element_symbol(bond.b));
+        if (a != index.end() && b != index.end()) {
+            table[std::minmax(a->second, b->second)] = bond.cutoff;
+        }
+    }
+    if (table.empty()) {
+        return out; // no bond given involves elements of this structure
+    }
+    for (const auto& [pair, cutoff] : table) {
+        neighbor_options.species_cutoffs.push_back({pair.first, pair.second, cutoff});
+    }
     neighbor_options.quantities.shifts = false;
     neighbor_options.quantities.distances = true;
     neighbor_options.quantities.vectors = false;
     const NeighborList list =
         compute_neighbors(structure.box, structure.positions, neighbor_options);
     for (std::size_t p = 0; p < list.size(); ++p) {
-        const std::size_t i = list.i()[p];
-        const std::size_t j = list.j()[p];
+        Coordination& c = out[list.i()[p]];
         const double d = list.distances()[p];
-        if (d < cutoff[species[i] * m + species[j]]) {
-            Coordination& c = out[i];
-            ++c.count;
-            if (!(c.nearest <= d)) {
-                c.nearest = d;
-            }
+        ++c.count;
+        if (!(c.nearest <= d)) {
+            c.nearest = d;
         }
     }
     return out;

@@ -1,5 +1,7 @@
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <random>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -326,4 +328,73 @@ TEST(NeighborList, RejectsAbsurdThreadAndCellCounts) {
     o.max_cells = std::size_t(1) << 40;
     EXPECT_THROW_MSG(tricell::compute_neighbors(cube10, x, o), tricell::InvalidArgument,
                      "max_cells must be at most 2^31");
+}
+
+namespace {
+
+// A dense cluster of `n` atoms (0.1 per cubic unit) centred at `centre`.
+std::vector<Eigen::Vector3d> cluster(std::size_t n, const Eigen::Vector3d& centre,
+                                     std::uint64_t seed) {
+    std::mt19937_64 rng(seed);
+    const double side = std::cbrt(double(n) / 0.1);
+    std::uniform_real_distribution<double> u(-side / 2, side / 2);
+    std::vector<Eigen::Vector3d> x(n);
+    for (auto& r : x) {
+        r = centre + Eigen::Vector3d(u(rng), u(rng), u(rng));
+    }
+    return x;
+}
+
+} // namespace
+
+TEST(HashBackend, OneSlotTableGivesTheSameListAsTheDenseGrid) {
+    // Every non-empty cell collides in the single slot: lookups must compare coordinates.
+    const auto x = cluster(400, Eigen::Vector3d(5, 5, 5), 3);
+    NeighborOptions o = with_cutoff(2.5);
+    o.sorted = true;
+    o.backend = tricell::SearchBackend::dense;
+    const NeighborList dense = tricell::compute_neighbors(cube10, x, o);
+    o.backend = tricell::SearchBackend::hash;
+    for (const std::size_t slots : {std::size_t(1), std::size_t(2), std::size_t(7)}) {
+        o.hash_table_size = slots;
+        const NeighborList hashed = tricell::compute_neighbors(cube10, x, o);
+        EXPECT_EQ(hashed.i(), dense.i()) << slots << " slots";
+        EXPECT_EQ(hashed.j(), dense.j());
+        EXPECT_EQ(hashed.shifts(), dense.shifts());
+        EXPECT_EQ(hashed.distances(), dense.distances());
+    }
+    EXPECT_GT(dense.size(), 1000u);
+}
+
+TEST(HashBackend, MemoryFollowsTheAtomsNotTheVolume) {
+    // Two clusters a million units apart along open axes, and a cluster in a periodic box of
+    // 10^4 per side: the hash stores at most one cell per atom, and auto takes it.
+    std::vector<Eigen::Vector3d> x = cluster(300, Eigen::Vector3d(0, 0, 0), 5);
+    const auto far = cluster(300, Eigen::Vector3d(1e6, -1e6, 3e5), 6);
+    x.insert(x.end(), far.begin(), far.end());
+    const Box open = Box::from_parameters(10, 10, 10, 90, 90, 90, tricell::Periodicity::none());
+    const Box huge = Box::from_parameters(1e4, 1e4, 1e4, 90, 90, 90);
+    for (const Box& box : {open, huge}) {
+        NeighborOptions o = with_cutoff(2.0);
+        tricell::NeighborSearch search;
+        search.build(box, x, o);
+        EXPECT_EQ(search.info().backend, tricell::SearchBackend::hash);
+        EXPECT_LE(search.info().stored_cells, x.size());
+        NeighborList list;
+        search.compute(list);
+        o.backend = tricell::SearchBackend::dense;
+        const NeighborList dense = tricell::compute_neighbors(box, x, o);
+        EXPECT_EQ(list.size(), dense.size());
+        EXPECT_GT(list.size(), 0u);
+    }
+}
+
+TEST(NeighborSearch, AutoTakesTheDenseGridForAUniformLiquid) {
+    std::vector<Eigen::Vector3d> x = cluster(2000, Eigen::Vector3d(0, 0, 0), 9);
+    const double side = std::cbrt(2000 / 0.1);
+    const Box box = Box::from_parameters(side, side, side, 90, 90, 90);
+    tricell::NeighborSearch search;
+    search.build(box, x, with_cutoff(5));
+    EXPECT_EQ(search.info().backend, tricell::SearchBackend::dense);
+    EXPECT_FALSE(search.info().reduced_frame);
 }
