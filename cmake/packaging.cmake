@@ -8,6 +8,15 @@ set(TRICELL_EXPORTED_TARGETS tricell_core)
 if(TARGET tricell_io)
     list(APPEND TRICELL_EXPORTED_TARGETS tricell_io)
 endif()
+if(TARGET tricell_mpi)
+    list(APPEND TRICELL_EXPORTED_TARGETS tricell_mpi)
+endif()
+if(TARGET tricell_c)
+    list(APPEND TRICELL_EXPORTED_TARGETS tricell_c)
+endif()
+if(TARGET tricell_fortran)
+    list(APPEND TRICELL_EXPORTED_TARGETS tricell_fortran)
+endif()
 
 configure_package_config_file(
     "${CMAKE_CURRENT_LIST_DIR}/tricell-config.cmake.in"
@@ -30,6 +39,14 @@ if(TRICELL_INSTALL)
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
     install(FILES "${PROJECT_BINARY_DIR}/include/tricell/export.hpp"
         DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}/tricell")
+    if(TARGET tricell_c)
+        install(FILES "${PROJECT_SOURCE_DIR}/include/tricell.h"
+            DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+    endif()
+    if(TARGET tricell_fortran)
+        install(DIRECTORY "${PROJECT_BINARY_DIR}/fortran/modules/"
+            DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}/tricell/fortran")
+    endif()
     install(EXPORT tricell-targets NAMESPACE tricell::
         DESTINATION "${TRICELL_CONFIG_DIR}")
     install(FILES

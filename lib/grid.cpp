@@ -64,7 +64,9 @@ CellGrid::CellGrid(const Box& box, const GridOptions& options, const Eigen::Vect
             break;
         }
         capped_ = true;
-        h *= 1.1;
+        // Grow by 10%, and by at least one ulp (1.1 h rounds back to h for the smallest
+        // denormal sizes).
+        h = std::max(h * 1.1, std::nextafter(h, std::numeric_limits<double>::infinity()));
     }
 
     for (int axis = 0; axis < 3; ++axis) {

@@ -346,6 +346,10 @@ void NeighborSearch::build(const Box& caller_box, PointsView positions,
     }
     const double sphere = 4.0 / 3.0 * pi * std::pow(cutoff, 3);
     s.estimated_pairs = double(n) * double(n) * sphere / volume * (options.half ? 0.5 : 1.0);
+    if (std::isnan(s.estimated_pairs)) {
+        s.estimated_pairs = 0; // sphere and volume both underflowed: no estimate (the sink still
+                               // enforces max_pairs on the real count)
+    }
     if (options.max_pairs != 0 && s.estimated_pairs > double(options.max_pairs)) {
         detail::fail<InvalidArgument>(
             "cutoff ", cutoff, " would give about ", s.estimated_pairs, " pairs for ", n,
@@ -525,7 +529,10 @@ void NeighborSearch::compute(NeighborList& out) const {
                     expected_pairs(occupancy.atoms[u], occupancy.volume[u] * box_volume, sphere);
             }
             expected *= s.options.half ? 0.5 : 1.0;
-            reserve[t] = static_cast<std::size_t>(std::min(expected * 1.1 + 1024, 2e8));
+            // At most 2^24 pairs up front (about 470 MB with D); longer lists grow from there.
+            reserve[t] = std::isfinite(expected) && expected < 1.6e7
+                             ? static_cast<std::size_t>(expected * 1.1) + 1024
+                             : std::size_t(1) << 24;
         }
 
         // Chunk 0 writes straight into `out`, the others into their own lists.

@@ -1,0 +1,165 @@
+// mpi_md: the md_lj Lennard-Jones NVE dynamics (FCC melting at T = 1, rho = 0.8, tilted box)
+// over MPI ranks with tricell::mpi (domain decomposition, halo exchange, distributed Verlet
+// list). Prints the energies per atom as it goes, the list builds, the speed and the halo
+// (ghost fraction and neighbour ranks per rank). With --check, rank 0 also runs the serial
+// md_lj simulation and prints the largest energy difference (exit status 1 above 1e-8 per atom).
+//
+//   mpirun -np K mpi_md [--steps 200] [--atoms 864 | --atoms-per-rank N] [--skin 0.3]
+//                       [--seed 1] [--dt 0.005] [--check]
+//
+// --atoms is rounded to the nearest 4 n^3; --atoms-per-rank N asks for about N K atoms (weak
+// scaling).
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <string>
+
+#include "mpi_lj.hpp"
+
+namespace {
+
+struct HaloSummary {
+    double ghost_fraction_mean = 0, ghost_fraction_max = 0;
+    double neighbors_mean = 0;
+    int neighbors_max = 0;
+};
+
+HaloSummary summarize(const tricell::mpi::Decomposition& d, const tricell::mpi::Halo& halo) {
+    const tricell::mpi::HaloStats& s = halo.stats();
+    double fraction = s.owned > 0 ? double(s.ghosts) / double(s.owned) : 0;
+    double neighbors = s.neighbor_ranks;
+    HaloSummary out;
+    MPI_Allreduce(&fraction, &out.ghost_fraction_mean, 1, MPI_DOUBLE, MPI_SUM, d.comm());
+    MPI_Allreduce(&fraction, &out.ghost_fraction_max, 1, MPI_DOUBLE, MPI_MAX, d.comm());
+    MPI_Allreduce(&neighbors, &out.neighbors_mean, 1, MPI_DOUBLE, MPI_SUM, d.comm());
+    MPI_Allreduce(&s.neighbor_ranks, &out.neighbors_max, 1, MPI_INT, MPI_MAX, d.comm());
+    out.ghost_fraction_mean /= d.size();
+    out.neighbors_mean /= d.size();
+    return out;
+}
+
+int run(int argc, char** argv) {
+    int steps = 200;
+    int atoms = 864;
+    int atoms_per_rank = 0;
+    unsigned long long seed = 1;
+    bool check = false;
+    md_lj::MdOptions options;
+    for (int k = 1; k < argc; ++k) {
+        const std::string arg = argv[k];
+        const char* value = k + 1 < argc ? argv[k + 1] : nullptr;
+        if (arg == "--check") {
+            check = true;
+            continue;
+        }
+        if (value == nullptr || (arg != "--steps" && arg != "--skin" && arg != "--atoms" &&
+                                 arg != "--seed" && arg != "--dt" && arg != "--atoms-per-rank")) {
+            std::fprintf(stderr, "usage: mpi_md [--steps N] [--atoms N | --atoms-per-rank N] "
+                                 "[--skin D] [--seed S] [--dt T] [--check]\n");
+            return 2;
+        }
+        ++k;
+        if (arg == "--steps") {
+            steps = std::atoi(value);
+        } else if (arg == "--skin") {
+            options.skin = std::atof(value);
+        } else if (arg == "--atoms") {
+            atoms = std::atoi(value);
+        } else if (arg == "--atoms-per-rank") {
+            atoms_per_rank = std::atoi(value);
+        } else if (arg == "--seed") {
+            seed = std::strtoull(value, nullptr, 10);
+        } else {
+            options.dt = std::atof(value);
+        }
+    }
+    tricell::mpi::Decomposition decomposition(MPI_COMM_WORLD);
+    const int rank = decomposition.rank();
+    if (atoms_per_rank > 0) {
+        atoms = atoms_per_rank * decomposition.size();
+    }
+    const int cells = std::max(1, int(std::lround(std::cbrt(atoms / 4.0))));
+    const md_lj::LjSystem system = md_lj::make_fcc(cells, 0.8, 1.0, seed);
+    mpi_md::MpiLjSimulation sim(decomposition, system, options);
+    const double n = double(system.positions.size());
+    md_lj::LjSimulation* serial = nullptr;
+    md_lj::LjSimulation serial_sim(system, options);
+    if (check && rank == 0) {
+        serial = &serial_sim;
+    }
+    const auto& dims = decomposition.dims();
+    if (rank == 0) {
+        std::printf("# %d atoms on %d ranks (%d x %d x %d), rho 0.8, r_c %g, skin %g, dt %g\n",
+                    int(n), decomposition.size(), dims[0], dims[1], dims[2], options.cutoff,
+                    options.skin, options.dt);
+        std::printf("# step  kinetic/N  potential/N  total/N%s\n",
+                    serial ? "  |total - serial|/N" : "");
+    }
+    const int every = std::max(1, steps / 10);
+    double worst = 0;
+    double seconds = 0;
+    for (int s = 0; s <= steps; ++s) {
+        if (s > 0) {
+            MPI_Barrier(decomposition.comm());
+            const auto start = std::chrono::steady_clock::now();
+            sim.step();
+            seconds +=
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            if (serial) {
+                serial->step();
+            }
+        }
+        const double kinetic = sim.kinetic_energy();
+        const double potential = sim.potential_energy();
+        double difference = 0;
+        if (serial) {
+            difference = std::abs(kinetic + potential - serial->total_energy()) / n;
+            difference = std::max(difference, std::abs(potential - serial->potential_energy()) / n);
+            worst = std::max(worst, difference);
+        }
+        if (rank == 0 && s % every == 0) {
+            std::printf("%6d %10.6f %12.6f %10.6f", s, kinetic / n, potential / n,
+                        (kinetic + potential) / n);
+            if (serial) {
+                std::printf("  %.3g", difference);
+            }
+            std::printf("\n");
+        }
+    }
+    double slowest = 0;
+    MPI_Allreduce(&seconds, &slowest, 1, MPI_DOUBLE, MPI_MAX, decomposition.comm());
+    const HaloSummary halo = summarize(decomposition, sim.list().halo());
+    if (rank == 0) {
+        std::printf("# list builds: %zu in %d steps; %.1f steps/s; %.3g atom-steps/s per rank\n",
+                    sim.builds(), steps, steps / slowest,
+                    n * steps / slowest / decomposition.size());
+        std::printf("# ghosts per owned atom (list radius %g): mean %.3f, max %.3f; neighbour "
+                    "ranks: mean %.1f, max %d\n",
+                    options.cutoff + options.skin, halo.ghost_fraction_mean,
+                    halo.ghost_fraction_max, halo.neighbors_mean, halo.neighbors_max);
+        if (serial) {
+            std::printf("# largest |energy - serial| per atom: %.3g (%s)\n", worst,
+                        worst <= 1e-8 ? "MATCHES SERIAL" : "DIFFERS FROM SERIAL");
+        }
+    }
+    return serial && worst > 1e-8 ? 1 : 0;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    MPI_Init(&argc, &argv);
+    int status = 0;
+    try {
+        status = run(argc, argv);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "mpi_md: %s\n", e.what());
+        status = 1;
+    }
+    int worst = 0;
+    MPI_Allreduce(&status, &worst, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+    MPI_Finalize();
+    return worst;
+}

@@ -1,0 +1,201 @@
+/* tricell.h: the C API of tricell (C99; also valid C++). Link tricell::c (libtricell_c).
+ *
+ * Conventions (every function follows them; CONTRACT.md sections 2 and 4):
+ *   - Positions: N x 3 doubles, row-major (x0 y0 z0 x1 y1 z1 ...), Cartesian, in the caller's
+ *     length unit. They may lie anywhere, even many box lengths outside the box.
+ *   - Box: three lattice vectors a, b, c. tricell_box_from_rows() takes them as the rows of a
+ *     row-major 3 x 3 array (as POSCAR, ASE and pymatgen list them), tricell_box_from_columns()
+ *     as its columns (H with r = H s). Periodicity: one int per axis, 0 (open) or 1 (periodic).
+ *   - A pair (i, j, S): 0-based atom indices, S an integer image shift (Sa, Sb, Sc) relative to
+ *     the positions AS GIVEN, so D = x_j - x_i + Sa a + Sb b + Sc c, d = |D|. A pair counts when
+ *     d < cutoff (strict). A full list holds every such (i, j, S) except (i, i, 0); a half list
+ *     one of (i, j, S), (j, i, -S): i < j, or i == j with S lexicographically positive.
+ *   - Status: every function that can fail returns a tricell_status; TRICELL_OK is 0. On failure
+ *     tricell_last_error() gives the message (the text of the C++ error, e.g. "cutoff must be > 0
+ *     (got -1.5)"), kept per thread until that thread's next call; on success it is "". No
+ *     function throws, aborts, or writes anything on failure: outputs keep their old contents,
+ *     except a list, which is left empty.
+ *   - Handles (search, list, Verlet) are created by *_create() and freed by *_destroy(), which
+ *     accepts NULL. A handle may be used by one thread at a time; distinct handles from any
+ *     number of threads at once.
+ */
+#ifndef TRICELL_H
+#define TRICELL_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#define TRICELL_VERSION_MAJOR 0
+#define TRICELL_VERSION_MINOR 1
+#define TRICELL_VERSION_PATCH 0
+#define TRICELL_VERSION_STRING "0.1.0"
+/* MAJOR * 10000 + MINOR * 100 + PATCH, for #if comparisons. */
+#define TRICELL_VERSION                                                                            \
+    (TRICELL_VERSION_MAJOR * 10000 + TRICELL_VERSION_MINOR * 100 + TRICELL_VERSION_PATCH)
+
+#if defined(_WIN32)
+#if defined(TRICELL_C_BUILDING)
+#define TRICELL_C_API __declspec(dllexport)
+#else
+#define TRICELL_C_API __declspec(dllimport)
+#endif
+#elif defined(__GNUC__)
+#define TRICELL_C_API __attribute__((visibility("default")))
+#else
+#define TRICELL_C_API
+#endif
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum tricell_status {
+    TRICELL_OK = 0,
+    TRICELL_ERROR_INVALID_ARGUMENT = 1, /* a NULL pointer, a bad value, a non-finite number */
+    TRICELL_ERROR_GEOMETRY = 2,         /* a singular or flat box, a zero periodic vector */
+    TRICELL_ERROR_OUT_OF_MEMORY = 3,
+    TRICELL_ERROR_INTERNAL = 4 /* anything else (a bug: please report the message) */
+} tricell_status;
+
+/* The message of this thread's last failed call, "" after a successful one. Never NULL; valid
+ * until this thread's next call into tricell. At most 1023 bytes are kept. */
+TRICELL_C_API const char* tricell_last_error(void);
+
+/* The library's version (compare with the TRICELL_VERSION_* macros of the header). */
+TRICELL_C_API const char* tricell_version(void);
+TRICELL_C_API int tricell_version_major(void);
+TRICELL_C_API int tricell_version_minor(void);
+TRICELL_C_API int tricell_version_patch(void);
+
+/* ---- Box -------------------------------------------------------------------------------- */
+
+/* A validated box, a plain value (no destroy). vectors[k] is lattice vector k (0 = a, 1 = b,
+ * 2 = c) in Cartesian components; periodic[k] is 0 or 1. Filled by the functions below; a box
+ * written by hand is checked again by every function that takes it. */
+typedef struct tricell_box {
+    double vectors[3][3];
+    int periodic[3];
+} tricell_box;
+
+/* rows[3 * k + c]: component c of lattice vector k. */
+TRICELL_C_API tricell_status tricell_box_from_rows(const double rows[9], const int periodic[3],
+                                                   tricell_box* box);
+/* columns[3 * c + k]: component c of lattice vector k (the matrix H, r = H s, row-major). */
+TRICELL_C_API tricell_status tricell_box_from_columns(const double columns[9],
+                                                      const int periodic[3], tricell_box* box);
+/* Lengths a, b, c and angles alpha = (b, c), beta = (a, c), gamma = (a, b) in degrees; a along
+ * x, b in the xy plane, c completing a right-handed frame (as pymatgen, ASE and LAMMPS). */
+TRICELL_C_API tricell_status tricell_box_from_parameters(double a, double b, double c, double alpha,
+                                                         double beta, double gamma,
+                                                         const int periodic[3], tricell_box* box);
+
+/* ---- Neighbour lists -------------------------------------------------------------------- */
+
+/* Which search structure bins the atoms. The result never depends on it (nor on threads), only
+ * the speed does. */
+typedef enum tricell_backend {
+    TRICELL_BACKEND_AUTOMATIC = 0, /* chosen per call from the cost model (the default) */
+    TRICELL_BACKEND_DENSE = 1,     /* a dense cell grid, atoms sorted by cell */
+    TRICELL_BACKEND_LINKED = 2,    /* the same grid as linked cells */
+    TRICELL_BACKEND_HASH = 3,      /* compact hashing of the non-empty cells */
+    TRICELL_BACKEND_OCTREE = 4     /* an adaptive octree */
+} tricell_backend;
+
+/* One entry of a per-species cutoff table: pairs of species a and b (either order) count when
+ * d < cutoff. */
+typedef struct tricell_species_cutoff {
+    int32_t a;
+    int32_t b;
+    double cutoff;
+} tricell_species_cutoff;
+
+/* Options of tricell_neighbors(). Start from tricell_neighbor_options_init(), then set cutoff
+ * (or radii, or species with species_cutoffs). Flags are 0 or 1 (anything else is refused). */
+typedef struct tricell_neighbor_options {
+    double cutoff;    /* pairs with d < cutoff; finite and > 0 (0 with radii or species) */
+    int half;         /* 1: each pair once (see the conventions) */
+    int sorted;       /* 1: sorted by i, then j, then S; fills tricell_pairs.offsets */
+    int shifts;       /* store S (default 1) */
+    int distances;    /* store d (default 1) */
+    int vectors;      /* store D (default 0) */
+    int threads;      /* threads for the search (default 1, 0 = all cores); same list */
+    int backend;      /* a tricell_backend (default TRICELL_BACKEND_AUTOMATIC); same list */
+    size_t max_pairs; /* refuse a list larger than this (default 5e8; 0 = no limit) */
+    /* Variable cutoffs (NULL: unused). radii: N per-atom radii, a pair counts when
+     * d < radii[i] + radii[j]. species: N per-atom species, with species_cutoffs (a table of
+     * species_cutoff_count entries): a pair counts when d < the table's cutoff for its two
+     * species; a pair of species missing from the table never counts. The arrays are read
+     * during tricell_neighbors() only. */
+    const double* radii;
+    const int32_t* species;
+    const tricell_species_cutoff* species_cutoffs;
+    size_t species_cutoff_count;
+} tricell_neighbor_options;
+
+TRICELL_C_API tricell_status tricell_neighbor_options_init(tricell_neighbor_options* options);
+
+/* The search structure (grid, cell lists, stencil); reuse it to keep its buffers. */
+typedef struct tricell_neighbor_search tricell_neighbor_search;
+/* A stored list of pairs; reuse it to keep its buffers. */
+typedef struct tricell_neighbor_list tricell_neighbor_list;
+
+TRICELL_C_API tricell_status tricell_neighbor_search_create(tricell_neighbor_search** search);
+TRICELL_C_API void tricell_neighbor_search_destroy(tricell_neighbor_search* search);
+TRICELL_C_API tricell_status tricell_neighbor_list_create(tricell_neighbor_list** list);
+TRICELL_C_API void tricell_neighbor_list_destroy(tricell_neighbor_list* list);
+
+/* Finds the pairs of the n positions (3 n doubles; may be NULL when n == 0) and stores them
+ * into list, replacing its contents. On failure the list is empty. */
+TRICELL_C_API tricell_status tricell_neighbors(tricell_neighbor_search* search,
+                                               const tricell_box* box, const double* positions,
+                                               size_t n, const tricell_neighbor_options* options,
+                                               tricell_neighbor_list* list);
+
+/* A view of a stored list: pointers into its arrays (no copy), valid until the next call that
+ * changes or destroys the list. A quantity that was not asked for is NULL. */
+typedef struct tricell_pairs {
+    size_t size;             /* number of pairs */
+    const uint32_t* i;       /* size entries */
+    const uint32_t* j;       /* size entries */
+    const int32_t* shifts;   /* 3 per pair (Sa, Sb, Sc), or NULL */
+    const double* distances; /* size entries, or NULL */
+    const double* vectors;   /* 3 per pair (Dx, Dy, Dz), or NULL */
+    size_t atoms;            /* N when offsets is set, else 0 */
+    const size_t* offsets;   /* N + 1 entries: atom i's pairs are [offsets[i], offsets[i+1]) */
+} tricell_pairs;
+
+TRICELL_C_API tricell_status tricell_neighbor_list_pairs(const tricell_neighbor_list* list,
+                                                         tricell_pairs* pairs);
+
+/* ---- Verlet lists ----------------------------------------------------------------------- */
+
+/* neighbors.cutoff is r_c; candidates are built at r_c + skin and refreshed by every update.
+ * neighbors.sorted is ignored (the pairs are always grouped by i, with offsets); variable
+ * cutoffs (radii, species) are not supported by the Verlet list. */
+typedef struct tricell_verlet_options {
+    tricell_neighbor_options neighbors;
+    double skin; /* finite and >= 0 */
+} tricell_verlet_options;
+
+typedef struct tricell_verlet tricell_verlet;
+
+TRICELL_C_API tricell_status tricell_verlet_options_init(tricell_verlet_options* options);
+/* Validates the options. */
+TRICELL_C_API tricell_status tricell_verlet_create(const tricell_verlet_options* options,
+                                                   tricell_verlet** verlet);
+TRICELL_C_API void tricell_verlet_destroy(tricell_verlet* verlet);
+/* The pairs within r_c for these positions and box, rebuilding the candidates first when atoms
+ * moved too far (or the atom count or periodicity changed). *rebuilt (if rebuilt is not NULL)
+ * is set to 1 when it rebuilt, 0 otherwise. On failure the pairs are empty and the next update
+ * rebuilds. */
+TRICELL_C_API tricell_status tricell_verlet_update(tricell_verlet* verlet, const tricell_box* box,
+                                                   const double* positions, size_t n, int* rebuilt);
+/* The pairs of the last update, grouped by i (offsets set; order within an atom unspecified). */
+TRICELL_C_API tricell_status tricell_verlet_pairs(const tricell_verlet* verlet,
+                                                  tricell_pairs* pairs);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* TRICELL_H */

@@ -1,0 +1,43 @@
+// tricell::mpi: neighbour search over MPI ranks by domain decomposition in fractional space.
+// Umbrella header (link tricell::mpi); each piece has its own header in tricell/mpi/:
+//
+//   decomposition.hpp  the grid of domains (MPI_Dims_create or given), per-axis boundaries
+//   atoms.hpp          the atoms a rank owns (id, caller position, payload) and migrate()
+//   halo.hpp           ghosts within the cutoff of a domain, with their image shifts
+//   neighbors.hpp      full and half lists of the owned atoms (the ownership rule)
+//   verlet.hpp         the distributed Verlet list (rebuild agreed by MPI_Allreduce)
+//   balance.hpp        boundaries from the E[n], E[n^2] occupancy-moment work model
+//
+// Weak-scaling model (one rank per domain, n atoms per rank at density rho, halo reach
+// r = r_c + skin for a Verlet list, r_c for a one-off search). For a near-cubic domain of side
+// l = (n / rho)^(1/3) in an orthorhombic box the fractional halo is the shell of width r, so
+//     ghosts per owned atom      g = (1 + 2 r / l)^3 - 1
+//     neighbour ranks            M = (2 ceil(r / l) + 1)^3 - 1   (once every axis has that many
+//                                    domains; 26 while r < l), one message each way per exchange
+//     bytes per exchange         56 g n per rank (id, y, c, species, radius per ghost)
+// and none of them depends on the number of ranks P. In a triclinic box the fractional halo box
+// is larger than the Cartesian shell (more ghosts, the same pairs). Exchanges are direct to every
+// rank in the halo (no staged forwarding along axes), which is what keeps a halo several domains
+// deep exact, at the price of M messages instead of 6. Per Verlet step: one halo update (M
+// messages), four small MPI_Allreduce (input and keep-the-build vote, the halo's input check, the
+// displacement decision, the refresh's error check), each O(log P). Per rebuild additionally: a
+// migration (one MPI_Alltoall of counts, O(P) per rank, then an MPI_Alltoallv that only carries
+// atoms to their new owners), a halo build (M messages) and the local build. So the terms that
+// grow with P are the Allreduce latencies (log P) and the Alltoall of counts at rebuilds (P),
+// about 40 kB per rank per rebuild at P = 10^4; neighbour-only migration (when every atom's
+// new owner is a halo neighbour, the usual case after one Verlet interval) would remove the
+// latter. Local work per rank is the serial search over n (1 + g) atoms, ghost-ghost pairs
+// included (the serial search has no "pairs of a subset" query), plus the full-list force loop.
+//     n = 500:    l = 8.5,  g = 3.53 (r = 2.8),  9.21 (r = 5.0)
+//     n = 4000:   l = 17.1, g = 1.34 (r = 2.8),  2.98 (r = 5.0)
+//     n = 32000:  l = 34.2, g = 0.58 (r = 2.8),  1.16 (r = 5.0)
+//     n = 256000: l = 68.4, g = 0.27 (r = 2.8),  0.51 (r = 5.0)
+// (rho = 0.8, M = 26 in every row.) Measured on this machine: examples/mpi_md/README.md.
+#pragma once
+
+#include "tricell/mpi/atoms.hpp"
+#include "tricell/mpi/balance.hpp"
+#include "tricell/mpi/decomposition.hpp"
+#include "tricell/mpi/halo.hpp"
+#include "tricell/mpi/neighbors.hpp"
+#include "tricell/mpi/verlet.hpp"

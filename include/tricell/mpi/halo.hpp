@@ -1,0 +1,118 @@
+// Ghost atoms: copies of the atoms within a reach of a rank's domain, with their image shifts.
+//
+// Selection is in fractional space. A point within Cartesian distance r of a point of the domain
+// differs from it by less than r / w_alpha in fractional coordinate alpha (w_alpha the
+// perpendicular width of the box), so the halo of a domain [lo, hi) is the fractional box
+// [lo - h, hi + h] with h_alpha = r / w_alpha per axis (a superset of the Cartesian shell; extra
+// ghosts are harmless). Every owner enumerates, for each of its atoms (wrapped position s), every
+// pair (destination domain, lattice translation T) with s + T inside the destination's halo, T
+// running over all translations along periodic axes that reach it: when r exceeds a domain's
+// width the halo is several domains deep, and when it exceeds the box a domain receives images of
+// its own atoms (T != 0; the atom itself with T = 0 is never its own ghost). Each (atom, T) is
+// sent at most once to a rank, so ghosts are unique.
+//
+// Local frame. Every local atom a (owned first, then ghosts) has a position y_a in one
+// continuous frame and an integer image c_a with y_a = x_{id(a)} - H c_a, x the owner's caller
+// position. An owned atom has y = its wrapped position (c = its wrap image); a ghost of it sent
+// with translation T has y = y_owner + H T and c = c_owner - T. A local pair a -> b then has
+// D = y_b - y_a = x_j - x_i + H (c_a - c_b): the global pair (id(a), id(b), S = c_a - c_b), S
+// relative to the caller's positions.
+//
+// Per-atom attributes. A build may carry a radius and a species per owned atom (for the
+// variable cutoffs of NeighborOptions); every ghost has its owner's, in radii() and species().
+//
+// Communication. The ranks exchanging ghosts are those whose domains come within h of each other
+// through some T, a symmetric relation both sides compute from the boundaries alone; each pair
+// of neighbour ranks exchanges exactly one message per exchange (empty or not), point to point
+// (MPI_Isend, then MPI_Probe / MPI_Get_count / MPI_Recv). update() re-sends the same ghosts with
+// fresh positions (the Verlet steps between rebuilds), into the same slots.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "tricell/box.hpp"
+#include "tricell/mpi/decomposition.hpp"
+#include "tricell/mpi/export.hpp"
+#include "tricell/types.hpp"
+
+namespace tricell::mpi {
+
+/// What one exchange cost on this rank.
+struct HaloStats {
+    std::size_t owned = 0;
+    std::size_t ghosts = 0;
+    int neighbor_ranks = 0; ///< other ranks this rank exchanges with (one message each way)
+    std::size_t bytes_sent = 0;
+};
+
+class TRICELL_MPI_API Halo {
+  public:
+    /// Collective. Selects and exchanges the ghosts within `reach` (Cartesian, > 0) of each
+    /// domain. radii / species, when not null (on every rank alike), hold one value per owned
+    /// atom and travel with the ghosts. positions are the owned atoms' caller positions; every atom
+    /// must lie in this rank's domain (after migrate()), else InvalidArgument on every rank.
+    void build(const Decomposition& decomposition, const Box& box,
+               const std::vector<std::uint64_t>& ids, PointsView positions, double reach,
+               const std::vector<double>* radii = nullptr,
+               const std::vector<std::int32_t>* species = nullptr);
+    /// Collective. New caller positions of the same owned atoms (same order), possibly in a new
+    /// box of the same periodicity: re-sends the ghosts of the build with fresh positions. Each
+    /// atom's image c follows its caller position across wrapping (the rounded fractional jump
+    /// since the build), so y stays continuous.
+    void update(const Decomposition& decomposition, const Box& box, PointsView positions);
+
+    std::size_t owned_count() const { return owned_; }
+    std::size_t ghost_count() const { return ids_.size() - owned_; }
+    std::size_t size() const { return ids_.size(); }
+    double reach() const { return reach_; }
+    /// y per local atom (owned first, then ghosts), 3 doubles each.
+    const std::vector<double>& positions() const { return y_; }
+    PointsView points() const { return PointsView(y_.data(), ids_.size()); }
+    /// Global id per local atom.
+    const std::vector<std::uint64_t>& ids() const { return ids_; }
+    /// c per local atom, 3 ints each: y = x_caller - H c.
+    const std::vector<std::int32_t>& images() const { return images_; }
+    Shift image(std::size_t a) const {
+        return Shift(images_[3 * a], images_[3 * a + 1], images_[3 * a + 2]);
+    }
+    /// Radius and species per local atom (empty unless the build was given them).
+    const std::vector<double>& radii() const { return radii_; }
+    const std::vector<std::int32_t>& species() const { return species_; }
+    /// The other ranks this rank exchanges ghosts with (ascending).
+    const std::vector<int>& neighbor_ranks() const { return neighbors_; }
+    const HaloStats& stats() const { return stats_; }
+
+  private:
+    // One ghost to send: owned atom index and translation.
+    struct Send {
+        std::uint32_t atom;
+        std::int32_t t[3];
+    };
+    void exchange(const Decomposition& decomposition, const Box& box, bool first);
+
+    double reach_ = 0;
+    std::size_t owned_ = 0;
+    Periodicity pbc_;
+    std::vector<double> y_;
+    std::vector<std::uint64_t> ids_;
+    std::vector<std::int32_t> images_;
+    std::vector<double> radii_;
+    std::vector<std::int32_t> species_;
+    bool with_radii_ = false, with_species_ = false;
+    // Fractional y of the owned atoms at the build, to follow their wrapping afterwards.
+    std::vector<double> reference_;
+    std::vector<int> neighbors_;
+    // Per neighbour rank (same order as neighbors_): the ghosts to send; ghosts to this rank's
+    // own domain (T != 0) are in self_sends_.
+    std::vector<std::vector<Send>> sends_;
+    std::vector<Send> self_sends_;
+    // Per neighbour rank: how many ghosts it sent at the build (the slots of update()).
+    std::vector<std::size_t> received_;
+    HaloStats stats_;
+};
+
+} // namespace tricell::mpi

@@ -1,0 +1,82 @@
+// Neighbour lists over ranks: each rank lists the pairs of the atoms it owns.
+//
+// A rank gathers ghosts within the cutoff of its domain (tricell::mpi::Halo), then runs the
+// ordinary serial search (tricell::NeighborSearch, any backend, with the caller's options) over
+// its owned and ghost atoms in their continuous local frame, in the box's frame with every axis
+// open (the ghosts already are the periodic images). That local search is a half list; each
+// local pair a -> b (and b -> a) maps to the global pair (id(a), id(b), S = c_a - c_b), see
+// halo.hpp, and is kept by the rule below. Over all ranks (CONTRACT.md, MPI):
+//
+// - full list: every (i, j, S) of the serial full list with i owned by this rank, once;
+// - half list (ownership rule): the pair is reported in the serial list's canonical orientation
+//   (i < j, or i == j with S lexicographically positive) by the rank that owns that i, once.
+//   Every rank sees all pairs of the atoms it owns, so each pair is reported exactly once over
+//   all ranks and the union equals the serial half list. (The partner j may be a ghost: a force
+//   loop over a half list must send the ghosts' forces back; the full list needs no reverse
+//   communication and is what examples/mpi_md uses.)
+//
+// Indices are global ids; S is relative to the positions the owners hold; D = x_j - x_i + H S
+// and d are computed from the local frame (the same doubles as a serial search up to rounding).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "tricell/box.hpp"
+#include "tricell/mpi/atoms.hpp"
+#include "tricell/mpi/decomposition.hpp"
+#include "tricell/mpi/export.hpp"
+#include "tricell/mpi/halo.hpp"
+#include "tricell/neighbor_list.hpp"
+
+namespace tricell::mpi {
+
+/// The pairs one rank reports, struct-of-arrays. i is always one of this rank's atoms.
+struct TRICELL_MPI_API DistributedPairs {
+    /// Index of i among the caller's owned atoms (LocalAtoms order), per pair.
+    std::vector<std::uint32_t> owned;
+    /// Global ids.
+    std::vector<std::uint64_t> i, j;
+    /// S, 3 ints per pair (if Quantities::shifts).
+    std::vector<std::int32_t> shifts;
+    /// d (if Quantities::distances).
+    std::vector<double> distances;
+    /// D = x_j - x_i + H S, 3 doubles per pair (if Quantities::vectors).
+    std::vector<double> vectors;
+
+    std::size_t size() const { return i.size(); }
+    Shift shift(std::size_t k) const {
+        return Shift(shifts[3 * k], shifts[3 * k + 1], shifts[3 * k + 2]);
+    }
+    /// Empties the lists, keeping their capacity.
+    void clear();
+};
+
+/// Halo plus local search for one configuration. build() is collective; compute() is local.
+class TRICELL_MPI_API DistributedSearch {
+  public:
+    /// Collective. options as for tricell::NeighborSearch (cutoff, half, quantities, sorted,
+    /// backend and tuning); the atoms must be owned by this rank (migrate() first). Variable
+    /// cutoffs work too: options.radii and options.species then hold one value per OWNED atom,
+    /// in the order of `atoms` (ghosts get their owners'); the halo reaches twice the largest
+    /// radius over all ranks, or the largest cutoff of options.species_cutoffs.
+    void build(const Decomposition& decomposition, const Box& box, const LocalAtoms& atoms,
+               const NeighborOptions& options);
+    /// This rank's pairs, as the options asked (sorted: by i, then j, then S).
+    void compute(DistributedPairs& out) const;
+    const Halo& halo() const { return halo_; }
+
+  private:
+    NeighborOptions options_;
+    Halo halo_;
+    NeighborSearch local_;
+    mutable NeighborList scratch_;
+};
+
+/// Collective convenience: build a DistributedSearch and return this rank's pairs.
+TRICELL_MPI_API DistributedPairs compute_neighbors(const Decomposition& decomposition,
+                                                   const Box& box, const LocalAtoms& atoms,
+                                                   const NeighborOptions& options);
+
+} // namespace tricell::mpi

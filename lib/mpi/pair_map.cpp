@@ -1,0 +1,137 @@
+#include "pair_map.hpp"
+
+#include <algorithm>
+#include <numeric>
+#include <tuple>
+
+namespace tricell::mpi {
+
+void DistributedPairs::clear() {
+    owned.clear();
+    i.clear();
+    j.clear();
+    shifts.clear();
+    distances.clear();
+    vectors.clear();
+}
+
+namespace detail {
+
+NeighborOptions local_options(const NeighborOptions& caller) {
+    NeighborOptions local = caller;
+    local.half = true;
+    local.sorted = false;
+    local.quantities = Quantities{false, true, true};
+    local.radii.clear(); // per local atom: set by the caller from the halo
+    local.species.clear();
+    return local;
+}
+
+namespace {
+
+// The serial list's canonical orientation: i < j, or i == j with S lexicographically positive.
+bool canonical(std::uint64_t i, std::uint64_t j, const std::int32_t s[3]) {
+    if (i != j) {
+        return i < j;
+    }
+    return s[0] > 0 || (s[0] == 0 && (s[1] > 0 || (s[1] == 0 && s[2] > 0)));
+}
+
+void sort_pairs(DistributedPairs& p, const Quantities& q) {
+    const std::size_t n = p.size();
+    std::vector<std::size_t> order(n);
+    std::iota(order.begin(), order.end(), std::size_t(0));
+    auto key = [&](std::size_t k) {
+        return std::make_tuple(p.i[k], p.j[k], p.shifts[3 * k], p.shifts[3 * k + 1],
+                               p.shifts[3 * k + 2]);
+    };
+    std::sort(order.begin(), order.end(),
+              [&](std::size_t a, std::size_t b) { return key(a) < key(b); });
+    DistributedPairs sorted;
+    for (std::size_t k : order) {
+        sorted.owned.push_back(p.owned[k]);
+        sorted.i.push_back(p.i[k]);
+        sorted.j.push_back(p.j[k]);
+        sorted.shifts.insert(sorted.shifts.end(), &p.shifts[3 * k], &p.shifts[3 * k] + 3);
+        if (q.distances) {
+            sorted.distances.push_back(p.distances[k]);
+        }
+        if (q.vectors) {
+            sorted.vectors.insert(sorted.vectors.end(), &p.vectors[3 * k], &p.vectors[3 * k] + 3);
+        }
+    }
+    p = std::move(sorted);
+}
+
+} // namespace
+
+void map_pairs(const NeighborList& local, const Halo& halo, bool half, bool sorted,
+               const Quantities& quantities, DistributedPairs& out) {
+    const std::size_t owned = halo.owned_count();
+    const auto& ids = halo.ids();
+    const auto& images = halo.images();
+    const auto& li = local.i();
+    const auto& lj = local.j();
+    const double* distances = local.distances().data();
+    const double* vectors = local.vectors().data();
+    // Shifts are always computed (the half rule needs them) and kept when asked or sorting.
+    const bool keep_shifts = quantities.shifts || sorted;
+    // Sized for the most pairs there can be (both orientations of every local pair), then cut.
+    const std::size_t most = 2 * local.size();
+    out.owned.resize(most);
+    out.i.resize(most);
+    out.j.resize(most);
+    out.shifts.resize(keep_shifts ? 3 * most : 0);
+    out.distances.resize(quantities.distances ? most : 0);
+    out.vectors.resize(quantities.vectors ? 3 * most : 0);
+    std::size_t n = 0;
+    auto emit = [&](std::size_t a, std::size_t b, double sign, std::size_t k) {
+        std::int32_t s[3];
+        for (std::size_t c = 0; c < 3; ++c) {
+            s[c] = images[3 * a + c] - images[3 * b + c];
+        }
+        if (half && !canonical(ids[a], ids[b], s)) {
+            return;
+        }
+        out.owned[n] = std::uint32_t(a);
+        out.i[n] = ids[a];
+        out.j[n] = ids[b];
+        if (keep_shifts) {
+            std::copy(s, s + 3, &out.shifts[3 * n]);
+        }
+        if (quantities.distances) {
+            out.distances[n] = distances[k];
+        }
+        if (quantities.vectors) {
+            for (std::size_t c = 0; c < 3; ++c) {
+                out.vectors[3 * n + c] = sign * vectors[3 * k + c];
+            }
+        }
+        ++n;
+    };
+    for (std::size_t k = 0; k < local.size(); ++k) {
+        const std::size_t a = li[k];
+        const std::size_t b = lj[k];
+        if (a < owned) {
+            emit(a, b, 1.0, k);
+        }
+        if (b < owned) {
+            emit(b, a, -1.0, k);
+        }
+    }
+    out.owned.resize(n);
+    out.i.resize(n);
+    out.j.resize(n);
+    out.shifts.resize(keep_shifts ? 3 * n : 0);
+    out.distances.resize(quantities.distances ? n : 0);
+    out.vectors.resize(quantities.vectors ? 3 * n : 0);
+    if (sorted) {
+        sort_pairs(out, quantities);
+        if (!quantities.shifts) {
+            out.shifts.clear();
+        }
+    }
+}
+
+} // namespace detail
+} // namespace tricell::mpi
