@@ -1,6 +1,7 @@
 // Umbrella header: everything in tricell::core.
 #pragma once
 
+#include "tricell/batch.hpp"
 #include "tricell/box.hpp"
 #include "tricell/cell_list.hpp"
 #include "tricell/cost_model.hpp"

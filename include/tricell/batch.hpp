@@ -1,0 +1,111 @@
+// Neighbour lists of many independent structures in one call (machine-learning potentials
+// evaluate batches of small cells, each with its own box, periodicity and positions).
+//
+// compute_neighbors_batch() gives every structure exactly the list compute_neighbors() gives
+// it alone (same pairs, same order, same bits), and stores all of them one after the other in
+// shared struct-of-arrays columns: the pairs of structure s are [pair_offsets[s],
+// pair_offsets[s + 1]), with i and j numbering the atoms of s from 0. One NeighborOptions
+// applies to every structure.
+//
+// Threads work across structures, not inside one: the structures are cut into contiguous runs
+// of about equal estimated cost (a fixed cost per call, one per atom, and the pairs expected
+// from the density), one run per thread. Each thread searches its structures in order with a
+// search object and scratch list of its own, so nothing is allocated per structure once the
+// buffers have grown, and the runs are joined in structure order: the output is the same,
+// array for array, whatever the thread count.
+//
+// Errors name the structure: "structure 17: position 3 is not finite (got ...)". When several
+// structures are bad the one with the lowest index is reported, whatever the thread count, and
+// the output is left empty.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "tricell/box.hpp"
+#include "tricell/export.hpp"
+#include "tricell/neighbor_list.hpp"
+#include "tricell/types.hpp"
+
+namespace tricell {
+
+/// One structure of a batch: its box (with periodicity) and a view of its positions (N x 3,
+/// the caller keeps the memory alive during the call).
+struct BatchStructure {
+    Box box;
+    PointsView positions;
+};
+
+namespace detail {
+/// The pair columns of a batch (or of one thread's share of it).
+struct BatchColumns {
+    PairArray<std::uint32_t> i, j;
+    PairArray<std::int32_t> shifts;
+    PairArray<double> distances, vectors;
+    std::size_t size() const { return i.size(); }
+    void clear();
+};
+struct BatchWorker; // one thread's search object and scratch list (lib/batch.cpp)
+} // namespace detail
+
+class BatchList;
+
+/// Computes the neighbour list of each of `count` structures with `options` (validated once;
+/// options.threads threads across structures, 0 = all hardware threads) into `out`. On error
+/// `out` is left empty and the message names the structure.
+TRICELL_API void compute_neighbors_batch(const BatchStructure* structures, std::size_t count,
+                                         const NeighborOptions& options, BatchList& out);
+
+/// The lists of a batch, struct-of-arrays. Reuse one object across calls to keep its buffers.
+class TRICELL_API BatchList {
+  public:
+    BatchList();
+    ~BatchList();
+    BatchList(BatchList&&) noexcept;
+    BatchList& operator=(BatchList&&) noexcept;
+    BatchList(const BatchList&) = delete;
+    BatchList& operator=(const BatchList&) = delete;
+
+    /// Structures of the last call.
+    std::size_t structure_count() const {
+        return pair_offsets_.empty() ? 0 : pair_offsets_.size() - 1;
+    }
+    /// Pairs over all structures.
+    std::size_t size() const { return columns_.size(); }
+    /// Pairs of structure s are [pair_offsets()[s], pair_offsets()[s + 1]); size count + 1.
+    const std::vector<std::size_t>& pair_offsets() const { return pair_offsets_; }
+    /// Atoms of structure s are [atom_offsets()[s], atom_offsets()[s + 1]) in a numbering of
+    /// all atoms of the batch (the index space of offsets()); size count + 1.
+    const std::vector<std::size_t>& atom_offsets() const { return atom_offsets_; }
+
+    /// Atom indices within their own structure (0-based per structure).
+    const PairArray<std::uint32_t>& i() const { return columns_.i; }
+    const PairArray<std::uint32_t>& j() const { return columns_.j; }
+    /// 3 ints per pair, empty unless Quantities::shifts.
+    const PairArray<std::int32_t>& shifts() const { return columns_.shifts; }
+    /// Empty unless Quantities::distances.
+    const PairArray<double>& distances() const { return columns_.distances; }
+    /// 3 doubles per pair, empty unless Quantities::vectors.
+    const PairArray<double>& vectors() const { return columns_.vectors; }
+    /// With sorted output: the pairs of atom a of structure s are [offsets[k], offsets[k + 1])
+    /// with k = atom_offsets()[s] + a (indices into the shared columns). Empty otherwise.
+    const std::vector<std::size_t>& offsets() const { return offsets_; }
+
+    /// Empties the list, keeping the capacity.
+    void clear();
+
+  private:
+    friend void compute_neighbors_batch(const BatchStructure*, std::size_t, const NeighborOptions&,
+                                        BatchList&);
+    detail::BatchColumns columns_;
+    std::vector<std::size_t> pair_offsets_, atom_offsets_, offsets_;
+    // One per thread of the last call, kept so that their buffers are reused.
+    std::vector<detail::BatchWorker> workers_;
+};
+
+/// The same for a vector of structures.
+TRICELL_API void compute_neighbors_batch(const std::vector<BatchStructure>& structures,
+                                         const NeighborOptions& options, BatchList& out);
+
+} // namespace tricell

@@ -1,0 +1,280 @@
+#include "tricell/batch.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <exception>
+#include <limits>
+#include <thread>
+
+#include "tricell/error.hpp"
+
+namespace tricell {
+
+namespace detail {
+
+void BatchColumns::clear() {
+    i.clear();
+    j.clear();
+    shifts.clear();
+    distances.clear();
+    vectors.clear();
+}
+
+// One thread's state: a search object and a scratch list reused from structure to structure
+// (and from call to call), the columns its run of structures is appended to (thread 0 appends
+// straight to the output), and per structure of the run its pair count and, when sorted, the
+// per-atom offsets relative to the structure's first pair.
+struct BatchWorker {
+    NeighborSearch search;
+    NeighborList scratch;
+    BatchColumns columns;
+    std::vector<std::size_t> pairs;
+    std::vector<std::size_t> offsets;
+};
+
+} // namespace detail
+
+namespace {
+
+// Appends all of `from` to `to`.
+template <class T> void append(PairArray<T>& to, const PairArray<T>& from) {
+    to.insert(to.end(), from.begin(), from.end());
+}
+
+// Rethrows the exception in flight with "structure s: " before its message, keeping its type.
+[[noreturn]] void rethrow_for_structure(std::size_t s) {
+    try {
+        throw;
+    } catch (const InvalidArgument& e) {
+        detail::fail<InvalidArgument>("structure ", s, ": ", e.what());
+    } catch (const GeometryError& e) {
+        detail::fail<GeometryError>("structure ", s, ": ", e.what());
+    } catch (const Error& e) {
+        detail::fail<Error>("structure ", s, ": ", e.what());
+    }
+}
+
+// Estimated cost of one structure's search, in units of one stored pair: a fixed cost per call
+// and per atom (binning) measured on small cells, plus the pairs expected from the density.
+double estimated_cost(const BatchStructure& s, const NeighborOptions& options) {
+    constexpr double per_call = 300, per_atom = 3;
+    const double n = double(s.positions.size());
+    const double sphere = 4.0 / 3.0 * 3.14159265358979323846 * std::pow(options.cutoff, 3);
+    const double pairs = std::min(n * n * sphere / std::abs(s.box.volume()), n * n * 1e3);
+    return per_call + per_atom * n + (options.half ? 0.5 : 1.0) * pairs;
+}
+
+// Contiguous runs of structures of about equal estimated cost, at most `threads` of them.
+std::vector<std::size_t> split_by_cost(const BatchStructure* structures, std::size_t count,
+                                       const NeighborOptions& options, std::size_t threads) {
+    std::vector<std::size_t> bounds{0};
+    if (threads > 1) {
+        std::vector<double> cost(count);
+        double total = 0;
+        for (std::size_t s = 0; s < count; ++s) {
+            cost[s] = estimated_cost(structures[s], options);
+            total += cost[s];
+        }
+        double running = 0;
+        for (std::size_t s = 0; s + 1 < count && bounds.size() < threads; ++s) {
+            running += cost[s];
+            if (running >= total * double(bounds.size()) / double(threads)) {
+                bounds.push_back(s + 1);
+            }
+        }
+    }
+    bounds.push_back(count);
+    return bounds;
+}
+
+// Runs task(0) .. task(count - 1), task 0 on the calling thread and each other on its own.
+template <class Task> void run_in_threads(std::size_t count, Task&& task) {
+    std::vector<std::thread> others;
+    others.reserve(count > 0 ? count - 1 : 0);
+    try {
+        for (std::size_t t = 1; t < count; ++t) {
+            others.emplace_back([&task, t] { task(t); });
+        }
+    } catch (...) { // could not start a thread: finish the started ones, then report
+        for (std::thread& w : others) {
+            w.join();
+        }
+        throw;
+    }
+    if (count > 0) {
+        task(0);
+    }
+    for (std::thread& w : others) {
+        w.join();
+    }
+}
+
+} // namespace
+
+BatchList::BatchList() = default;
+BatchList::~BatchList() = default;
+BatchList::BatchList(BatchList&&) noexcept = default;
+BatchList& BatchList::operator=(BatchList&&) noexcept = default;
+
+void BatchList::clear() {
+    columns_.clear();
+    pair_offsets_.clear();
+    atom_offsets_.clear();
+    offsets_.clear();
+}
+
+void compute_neighbors_batch(const BatchStructure* structures, std::size_t count,
+                             const NeighborOptions& options, BatchList& out) {
+    out.clear();
+    options.validate();
+    if (count > 0 && structures == nullptr) {
+        detail::fail<InvalidArgument>("structures: null data for ", count, " structures");
+    }
+    const Quantities& q = options.quantities;
+    std::size_t threads = options.threads > 0
+                              ? std::size_t(options.threads)
+                              : std::max<std::size_t>(1, std::thread::hardware_concurrency());
+    threads = std::max<std::size_t>(1, std::min(threads, count));
+    const std::vector<std::size_t> bounds = split_by_cost(structures, count, options, threads);
+    const std::size_t runs = bounds.size() - 1;
+
+    NeighborOptions one = options; // each structure's search runs on its worker's thread
+    one.threads = 1;
+    std::vector<detail::BatchWorker> workers;
+    workers.swap(out.workers_);
+    workers.resize(runs);
+    // Lowest index of a structure that failed so far; a worker stops at its first failure and
+    // skips structures above the lowest one known, so the lowest failing index is reported
+    // whatever the thread count (every structure below it is still searched).
+    std::atomic<std::size_t> first_failure{std::numeric_limits<std::size_t>::max()};
+    std::vector<std::exception_ptr> errors(runs);
+    std::vector<std::size_t> failed_at(runs, std::numeric_limits<std::size_t>::max());
+
+    auto run = [&](std::size_t t) {
+        detail::BatchWorker& w = workers[t];
+        detail::BatchColumns& columns = t == 0 ? out.columns_ : w.columns;
+        columns.clear();
+        w.pairs.clear();
+        w.offsets.clear();
+        for (std::size_t s = bounds[t]; s < bounds[t + 1]; ++s) {
+            if (s > first_failure.load(std::memory_order_relaxed)) {
+                return;
+            }
+            try {
+                w.search.build(structures[s].box, structures[s].positions, one);
+                w.search.compute(w.scratch);
+                const NeighborList& list = w.scratch;
+                if (options.max_pairs != 0 && columns.size() + list.size() > options.max_pairs) {
+                    detail::fail<InvalidArgument>(
+                        "the batch has more than max_pairs = ", options.max_pairs,
+                        " pairs in total; raise NeighborOptions::max_pairs to allow it");
+                }
+                append(columns.i, list.i());
+                append(columns.j, list.j());
+                append(columns.shifts, list.shifts());
+                append(columns.distances, list.distances());
+                append(columns.vectors, list.vectors());
+                w.pairs.push_back(list.size());
+                w.offsets.insert(w.offsets.end(), list.offsets().begin(),
+                                 list.offsets().end() - (list.offsets().empty() ? 0 : 1));
+            } catch (...) {
+                try {
+                    rethrow_for_structure(s);
+                } catch (...) {
+                    errors[t] = std::current_exception();
+                }
+                failed_at[t] = s;
+                std::size_t known = first_failure.load();
+                while (s < known && !first_failure.compare_exchange_weak(known, s)) {
+                }
+                return;
+            }
+        }
+    };
+
+    try {
+        run_in_threads(runs, run);
+        const auto lowest = std::min_element(failed_at.begin(), failed_at.end());
+        if (*lowest != std::numeric_limits<std::size_t>::max()) {
+            std::rethrow_exception(errors[std::size_t(lowest - failed_at.begin())]);
+        }
+
+        // Offsets per structure, in structure order (the runs are contiguous and in order).
+        out.pair_offsets_.assign(count + 1, 0);
+        out.atom_offsets_.assign(count + 1, 0);
+        std::vector<std::size_t> run_start(runs, 0);
+        std::size_t total = 0;
+        for (std::size_t t = 0; t < runs; ++t) {
+            run_start[t] = total;
+            for (std::size_t k = 0; k < workers[t].pairs.size(); ++k) {
+                total += workers[t].pairs[k];
+                out.pair_offsets_[bounds[t] + k + 1] = total;
+            }
+        }
+        for (std::size_t s = 0; s < count; ++s) {
+            out.atom_offsets_[s + 1] = out.atom_offsets_[s] + structures[s].positions.size();
+        }
+        if (options.max_pairs != 0 && total > options.max_pairs) {
+            detail::fail<InvalidArgument>(
+                "the batch has more than max_pairs = ", options.max_pairs,
+                " pairs in total; raise NeighborOptions::max_pairs to allow it");
+        }
+
+        // Join the other runs' columns after run 0's, each run copied by its own thread.
+        if (runs > 1) {
+            detail::BatchColumns& c = out.columns_;
+            c.i.resize(total);
+            c.j.resize(total);
+            if (q.shifts) {
+                c.shifts.resize(3 * total);
+            }
+            if (q.distances) {
+                c.distances.resize(total);
+            }
+            if (q.vectors) {
+                c.vectors.resize(3 * total);
+            }
+            run_in_threads(runs - 1, [&](std::size_t k) {
+                const detail::BatchColumns& from = workers[k + 1].columns;
+                const std::ptrdiff_t at = std::ptrdiff_t(run_start[k + 1]);
+                std::copy(from.i.begin(), from.i.end(), c.i.begin() + at);
+                std::copy(from.j.begin(), from.j.end(), c.j.begin() + at);
+                std::copy(from.shifts.begin(), from.shifts.end(), c.shifts.begin() + 3 * at);
+                std::copy(from.distances.begin(), from.distances.end(), c.distances.begin() + at);
+                std::copy(from.vectors.begin(), from.vectors.end(), c.vectors.begin() + 3 * at);
+            });
+        }
+
+        if (options.sorted) {
+            // Per-atom offsets, shifted from each structure's first pair to the shared columns.
+            out.offsets_.reserve(out.atom_offsets_[count] + 1);
+            for (std::size_t t = 0; t < runs; ++t) {
+                std::size_t atom = 0;
+                for (std::size_t s = bounds[t]; s < bounds[t + 1]; ++s) {
+                    const std::size_t atoms = structures[s].positions.size();
+                    for (std::size_t a = 0; a < atoms; ++a) {
+                        out.offsets_.push_back(out.pair_offsets_[s] + workers[t].offsets[atom + a]);
+                    }
+                    atom += atoms;
+                }
+            }
+            out.offsets_.push_back(total);
+        }
+        for (detail::BatchWorker& w : workers) {
+            w.columns.clear();
+        }
+        out.workers_.swap(workers);
+    } catch (...) {
+        out.clear();
+        out.workers_.swap(workers);
+        throw;
+    }
+}
+
+void compute_neighbors_batch(const std::vector<BatchStructure>& structures,
+                             const NeighborOptions& options, BatchList& out) {
+    compute_neighbors_batch(structures.data(), structures.size(), options, out);
+}
+
+} // namespace tricell
