@@ -1,0 +1,235 @@
+// tricell.NeighborList and tricell.VerletList: the C++ searches behind a numpy interface.
+//
+// NeighborList keeps one NeighborSearch (grid, cell list, stencil buffers) and a small pool of
+// output lists between calls. compute() with copy=False hands out views of a pooled list's
+// arrays; their base object holds a reference to that list, so a view stays valid for as long
+// as it exists, even after the NeighborList object is gone. The next compute() writes into a
+// pooled list that no view refers to (allocating one only when every pooled list is still
+// viewed), so a view never changes under the caller and a loop that drops its previous
+// results reuses the same memory call after call. The GIL is released during every search; a
+// mutex serialises calls on one object from several Python threads.
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include <tricell/neighbor_list.hpp>
+#include <tricell/verlet.hpp>
+
+#include "arrays.hpp"
+
+namespace tricell::python {
+
+namespace {
+
+class PyNeighborList {
+  public:
+    // cutoff: a float (one cutoff), a dict {(species a, species b): cutoff} (a per-species-pair
+    // table; compute() then needs species=) or None (compute() then needs radii=).
+    PyNeighborList(const py::object& cutoff, bool full, bool sorted, int threads,
+                   const std::string& backend) {
+        if (py::isinstance<py::dict>(cutoff)) {
+            for (const auto& entry : cutoff.cast<py::dict>()) {
+                try {
+                    const auto key = entry.first.cast<std::pair<std::int32_t, std::int32_t>>();
+                    options_.species_cutoffs.push_back(
+                        SpeciesCutoff{key.first, key.second, entry.second.cast<double>()});
+                } catch (const py::cast_error&) {
+                    throw py::value_error("a cutoff dict maps pairs of integer species to "
+                                          "cutoffs (got " +
+                                          py::repr(entry.first).cast<std::string>() + ": " +
+                                          py::repr(entry.second).cast<std::string>() + ")");
+                }
+            }
+            if (options_.species_cutoffs.empty()) {
+                throw py::value_error("the cutoff dict of species pairs is empty");
+            }
+        } else if (!cutoff.is_none()) {
+            try {
+                options_.cutoff = cutoff.cast<double>();
+            } catch (const py::cast_error&) {
+                throw py::value_error("cutoff must be a number, a dict of species pairs or None "
+                                      "(got " +
+                                      py::repr(cutoff).cast<std::string>() + ")");
+            }
+        }
+        per_atom_radii_ = cutoff.is_none();
+        options_.half = !full;
+        options_.sorted = sorted;
+        options_.threads = threads;
+        options_.backend = parse_backend(backend);
+        if (!per_atom_radii_) {
+            options_.validate();
+        }
+    }
+
+    py::object compute(const py::handle& points, const py::handle& box, const py::handle& periodic,
+                       const std::string& quantities, bool copy, const py::handle& radii,
+                       const py::handle& species) {
+        const DoubleArray x = points_array(points);
+        const Box search_box = box_from_rows(box, periodic);
+        NeighborOptions options = options_;
+        options.quantities = parse_quantities(quantities);
+        const auto n = static_cast<std::size_t>(x.shape(0));
+        const PointsView view(x.data(), n);
+        if (per_atom_radii_ == radii.is_none()) {
+            throw py::value_error(per_atom_radii_
+                                      ? "radii= is needed: this NeighborList was made with "
+                                        "cutoff=None (per-atom radii)"
+                                      : "radii= is only for a NeighborList made with cutoff=None");
+        }
+        if (options.species_cutoffs.empty() != species.is_none()) {
+            throw py::value_error(species.is_none()
+                                      ? "species= is needed: this NeighborList was made with a "
+                                        "cutoff dict of species pairs"
+                                      : "species= is only for a NeighborList made with a cutoff "
+                                        "dict of species pairs");
+        }
+        if (!radii.is_none()) {
+            const DoubleArray r = per_atom_array(radii, n, "radii");
+            options.radii.assign(r.data(), r.data() + n);
+        }
+        if (!species.is_none()) {
+            options.species = per_atom_species(species, n);
+        }
+
+        std::shared_ptr<NeighborList> list;
+        {
+            py::gil_scoped_release release;
+            std::lock_guard<std::mutex> lock(mutex_);
+            list = free_list();
+            search_.build(search_box, view, options);
+            search_.compute(*list);
+        }
+        return pair_columns(*list, quantities, copy ? nullptr : list);
+    }
+
+    bool full() const { return !options_.half; }
+    bool sorted() const { return options_.sorted; }
+    int threads() const { return options_.threads; }
+
+  private:
+    // A pooled list no view refers to (the pool's own reference is the only one), or a new
+    // one. Keeps at most two unviewed lists, so memory follows what the caller still holds.
+    std::shared_ptr<NeighborList> free_list() {
+        std::shared_ptr<NeighborList> chosen;
+        std::vector<std::shared_ptr<NeighborList>> kept;
+        int unviewed = 0;
+        for (auto& entry : pool_) {
+            const bool viewed = entry.use_count() > 1;
+            if (!viewed && !chosen) {
+                chosen = entry;
+            } else if (!viewed && ++unviewed > 1) {
+                continue;
+            }
+            kept.push_back(std::move(entry));
+        }
+        pool_ = std::move(kept);
+        if (!chosen) {
+            chosen = std::make_shared<NeighborList>();
+            pool_.push_back(chosen);
+        }
+        return chosen;
+    }
+
+    NeighborOptions options_;
+    bool per_atom_radii_ = false;
+    NeighborSearch search_;
+    std::vector<std::shared_ptr<NeighborList>> pool_;
+    std::mutex mutex_;
+};
+
+class PyVerletList {
+  public:
+    PyVerletList(double cutoff, double skin, bool full, int threads) {
+        options_.neighbors.cutoff = cutoff;
+        options_.skin = skin;
+        options_.neighbors.half = !full;
+        options_.neighbors.threads = threads;
+        options_.neighbors.quantities.vectors = true;
+        list_ = VerletList(options_);
+    }
+
+    py::object update(const py::handle& points, const py::handle& box, const py::handle& periodic,
+                      const std::string& quantities) {
+        const DoubleArray x = points_array(points);
+        const Box search_box = box_from_rows(box, periodic);
+        parse_quantities(quantities);
+        const PointsView view(x.data(), static_cast<std::size_t>(x.shape(0)));
+        {
+            py::gil_scoped_release release;
+            std::lock_guard<std::mutex> lock(mutex_);
+            rebuilt_ = list_.update(search_box, view);
+        }
+        return pair_columns(list_.pairs(), quantities, nullptr);
+    }
+
+    double cutoff() const { return options_.neighbors.cutoff; }
+    double skin() const { return options_.skin; }
+    bool rebuilt() const { return rebuilt_; }
+    std::size_t rebuild_count() const { return list_.rebuild_count(); }
+
+  private:
+    VerletOptions options_;
+    VerletList list_;
+    bool rebuilt_ = false;
+    std::mutex mutex_;
+};
+
+} // namespace
+
+void bind_neighbors(py::module_& m) {
+    py::class_<PyNeighborList>(m, "NeighborList", R"doc(
+Periodic neighbour list in a triclinic box (CONTRACT.md section 2).
+
+NeighborList(cutoff, full=True, sorted=False, threads=1, backend="auto")
+
+Pairs (i, j, S) with |D| < cutoff, D = points[j] - points[i] + S @ box, except (i, i, 0).
+cutoff may also be a dict {(a, b): cutoff} of integer species pairs (symmetric; a pair of
+species missing from it never counts; compute() then takes species=, one per point), or None
+for per-atom radii (compute() then takes radii=; a pair counts when d < r_i + r_j).
+full=False keeps each pair once (i < j, or i == j with S lexicographically positive).
+sorted=True orders pairs by i, then j, then S. threads=0 uses every core; the result is
+identical for any thread count. backend ("auto", "dense", "linked", "hash", "octree") changes
+only the speed.)doc")
+        .def(py::init<const py::object&, bool, bool, int, const std::string&>(), py::arg("cutoff"),
+             py::arg("full") = true, py::arg("sorted") = false, py::arg("threads") = 1,
+             py::arg("backend") = "auto")
+        .def("compute", &PyNeighborList::compute, py::arg("points"), py::arg("box"),
+             py::arg("periodic") = true, py::arg("quantities") = "ijSd", py::arg("copy") = true,
+             py::arg("radii") = py::none(), py::arg("species") = py::none(),
+             R"doc(
+Computes the list for N x 3 Cartesian points (anywhere, also outside the box) and a 3 x 3 box
+with the lattice vectors as rows; periodic is one bool or three. Returns numpy arrays in the
+order of the letters of quantities: i, j (uint32), S (int32, N x 3), d (float64), D (float64,
+N x 3), P (uint32, N x 2 pairs (i, j)); one letter returns one array. copy=False returns views
+of the list's own buffers instead of copies (P is always a new array); a view stays valid as
+long as it exists, and later calls never write into memory a view still refers to.)doc")
+        .def_property_readonly("full", &PyNeighborList::full)
+        .def_property_readonly("sorted", &PyNeighborList::sorted)
+        .def_property_readonly("threads", &PyNeighborList::threads);
+
+    py::class_<PyVerletList>(m, "VerletList", R"doc(
+Verlet list: candidates within cutoff + skin, rebuilt only when some atom moved far enough
+that a pair could be missed (see include/tricell/verlet.hpp for the rule).
+
+VerletList(cutoff, skin, full=True, threads=1))doc")
+        .def(py::init<double, double, bool, int>(), py::arg("cutoff"), py::arg("skin"),
+             py::arg("full") = true, py::arg("threads") = 1)
+        .def("update", &PyVerletList::update, py::arg("points"), py::arg("box"),
+             py::arg("periodic") = true, py::arg("quantities") = "ijSd",
+             R"doc(
+Refreshes the pairs within the cutoff for these points and box (rebuilding the candidates
+when needed) and returns them as NeighborList.compute does (always copies). Pairs come
+grouped by increasing i.)doc")
+        .def_property_readonly("cutoff", &PyVerletList::cutoff)
+        .def_property_readonly("skin", &PyVerletList::skin)
+        .def_property_readonly("rebuilt", &PyVerletList::rebuilt,
+                               "Whether the last update() rebuilt the candidates.")
+        .def_property_readonly("rebuild_count", &PyVerletList::rebuild_count);
+}
+
+} // namespace tricell::python

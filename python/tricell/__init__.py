@@ -1,0 +1,42 @@
+"""tricell: periodic neighbour search in general triclinic boxes.
+
+The native part (tricell._tricell, a pybind11 module over the C++ library) provides
+NeighborList, VerletList and read(); tricell.ase and tricell.pymatgen are drop-in
+replacements for ASE's and pymatgen's neighbour-list functions built on it.
+
+    import tricell
+    nl = tricell.NeighborList(cutoff=5.0)
+    i, j, S, d = nl.compute(points, box, periodic=True, quantities="ijSd")
+
+Boxes are 3 x 3 arrays with the lattice vectors as rows (as ASE and pymatgen store them);
+D = points[j] - points[i] + S @ box. Bad values raise ValueError, unreadable or malformed
+files OSError, with the library's message.
+"""
+import os
+from typing import List, NamedTuple, Tuple
+
+import numpy as np
+
+from ._tricell import NeighborList, VerletList, _read
+
+__all__ = ["NeighborList", "VerletList", "Structure", "read"]
+
+
+class Structure(NamedTuple):
+    """A structure read from a file: lattice vectors as rows, Cartesian positions (N x 3),
+    element symbols, periodicity, site occupancies and labels (see tricell.read)."""
+
+    cell: np.ndarray
+    positions: np.ndarray
+    species: List[str]
+    pbc: Tuple[bool, bool, bool]
+    occupancies: np.ndarray
+    labels: List[str]
+
+
+def read(path, format=None):
+    """Reads a CIF (*.cif), VASP POSCAR/CONTCAR (POSCAR*, CONTCAR*, *.vasp, *.poscar) or
+    extended XYZ (*.xyz, *.extxyz) file; format ("cif", "poscar", "xyz") overrides the guess
+    from the name. A CIF is expanded to the full unit cell (README: the tricell command).
+    Raises OSError with "FILE:LINE: what is wrong" for a missing or malformed file."""
+    return Structure(*_read(os.fspath(path), format or ""))

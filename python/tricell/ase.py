@@ -1,0 +1,136 @@
+"""Drop-in replacements for ase.neighborlist.neighbor_list, primitive_neighbor_list and
+first_neighbors, computed by tricell.
+
+    from tricell.ase import neighbor_list
+    i, j, d, D, S = neighbor_list("ijdDS", atoms, 5.0)
+
+Same signatures and results as ASE's functions: the letters i, j, d, D, S in any order (one
+letter returns an array, several a tuple); i, j and S as int64, d and D as float64, with the
+same shapes for an empty result; cutoff a float, one radius per atom (a pair counts when
+d < r_i + r_j) or a dict keyed by pairs of element symbols or atomic numbers (a pair of
+elements not in it never counts; a later key for the same two elements replaces an earlier
+one, as in ASE); self_interaction adds each atom's pair with itself at S = 0. Pairs are sorted
+by i, then j, then S (ASE guarantees the order by i only). max_nbins is accepted and ignored:
+tricell bounds its grid memory by the number of atoms.
+
+This module only translates arguments: the search, including per-atom and per-pair cutoffs,
+runs in the C++ library.
+"""
+import numpy as np
+
+from ._tricell import NeighborList
+
+__all__ = ["neighbor_list", "primitive_neighbor_list", "first_neighbors"]
+
+_EMPTY = {
+    "i": (np.int64, (0,)),
+    "j": (np.int64, (0,)),
+    "d": (np.float64, (0,)),
+    "D": (np.float64, (0, 3)),
+    "S": (np.int64, (0, 3)),
+}
+
+
+def _result(quantities, columns):
+    values = tuple(columns[q] for q in quantities)
+    return values[0] if len(values) == 1 else values
+
+
+def _empty(quantities):
+    return _result(quantities, {q: np.zeros(shape, dtype) for q, (dtype, shape) in _EMPTY.items()})
+
+
+def _species_table(cutoff):
+    """ASE's dict of element pairs as {(Z_a, Z_b): cutoff} with Z_a <= Z_b: a later key for
+    the same two elements replaces an earlier one, and pairs that can never count in ASE
+    (cutoff <= 0, a name that is no element) are left out."""
+    from ase.data import atomic_numbers
+
+    table = {}
+    for (a, b), value in cutoff.items():
+        a = atomic_numbers.get(a, a)
+        b = atomic_numbers.get(b, b)
+        if isinstance(a, str) or isinstance(b, str):
+            continue
+        table[(min(a, b), max(a, b))] = float(value)
+    return {pair: value for pair, value in table.items() if value > 0}
+
+
+def primitive_neighbor_list(quantities, pbc, cell, positions, cutoff, numbers=None,
+                            self_interaction=False, use_scaled_positions=False, max_nbins=1e6):
+    """ase.neighborlist.primitive_neighbor_list, computed by tricell (see the module's doc).
+
+    pbc: three bools; cell: 3 x 3, lattice vectors as rows (zero rows of open axes are
+    completed as ASE completes them); positions: N x 3 Cartesian, or fractional with
+    use_scaled_positions; numbers: atomic numbers, needed with a dict cutoff."""
+    for q in quantities:
+        if q not in _EMPTY:
+            raise ValueError("Unsupported quantity specified.")
+    if len(positions) == 0:
+        return _empty(quantities)
+    from ase.geometry import complete_cell
+
+    cell = np.asarray(cell, dtype=float)
+    positions = np.asarray(positions, dtype=float)
+    if use_scaled_positions:
+        positions = positions @ cell
+    pbc = np.broadcast_to(np.asarray(pbc, dtype=bool), (3,))
+
+    needed = "ij" + "".join(q for q in "SdD" if q in quantities or (q == "S" and self_interaction))
+    if isinstance(cutoff, dict):
+        if numbers is None:
+            raise ValueError("a cutoff dict of element pairs needs the atomic numbers (numbers=)")
+        table = _species_table(cutoff)
+        if not table:
+            return _empty(quantities)
+        search = NeighborList(table, sorted=True)
+        extra = {"species": np.asarray(numbers)}
+        # An atom and itself (d = 0) count when its element pair with itself has a cutoff.
+        has_self = np.array([table.get((z, z), 0) > 0 for z in np.asarray(numbers).tolist()],
+                            dtype=bool)
+    elif np.isscalar(cutoff):
+        if not cutoff > 0:
+            return _empty(quantities)  # ASE keeps d < cutoff: nothing for a cutoff <= 0
+        search = NeighborList(float(cutoff), sorted=True)
+        extra = {}
+        has_self = np.ones(len(positions), dtype=bool)
+    else:
+        search = NeighborList(None, sorted=True)
+        extra = {"radii": np.asarray(cutoff, dtype=float)}
+        has_self = extra["radii"] > 0
+    found = search.compute(positions, complete_cell(cell), pbc, needed, **extra)
+    columns = dict(zip(needed, found))
+    columns["i"] = columns["i"].astype(np.int64)
+    columns["j"] = columns["j"].astype(np.int64)
+    if "S" in columns:
+        columns["S"] = columns["S"].astype(np.int64)
+    if self_interaction:
+        columns = _with_self_pairs(columns, np.flatnonzero(has_self))
+    return _result(quantities, columns)
+
+
+def _with_self_pairs(columns, atoms):
+    """Adds (k, k, S = 0) with d = 0, D = 0 for the given atoms, keeping the order by i, j, S."""
+    atoms = atoms.astype(np.int64)
+    n = len(atoms)
+    zeros = {"i": atoms, "j": atoms, "S": np.zeros((n, 3), np.int64),
+             "d": np.zeros(n), "D": np.zeros((n, 3))}
+    merged = {q: np.concatenate([columns[q], zeros[q]]) for q in columns}
+    s = merged["S"]
+    order = np.lexsort((s[:, 2], s[:, 1], s[:, 0], merged["j"], merged["i"]))
+    return {q: merged[q][order] for q in merged}
+
+
+def neighbor_list(quantities, a, cutoff, self_interaction=False, max_nbins=1e6):
+    """ase.neighborlist.neighbor_list, computed by tricell: the neighbours of the ase.Atoms
+    `a` (its pbc, cell and positions; its atomic numbers for a dict cutoff)."""
+    return primitive_neighbor_list(quantities, a.pbc, a.get_cell(complete=True), a.positions,
+                                   cutoff, numbers=a.numbers, self_interaction=self_interaction,
+                                   max_nbins=max_nbins)
+
+
+def first_neighbors(natoms, first_atom):
+    """ase.neighborlist.first_neighbors: for i sorted ascending, s with the pairs of atom k at
+    s[k]:s[k + 1] (natoms + 1 int64 values)."""
+    first_atom = np.asarray(first_atom)
+    return np.searchsorted(first_atom, np.arange(natoms + 1), side="left").astype(np.int64)
