@@ -310,11 +310,11 @@ double oracle_work(const Box& box, const std::vector<Eigen::Vector3d>& x, double
                                  : std::numeric_limits<double>::infinity();
 }
 
-// Every input runs through every backend, automatic included. (Add SearchBackend::octree when
-// it is built: today it throws "the octree backend is not built yet" for every input.)
+// Every input runs through every backend, automatic included.
 constexpr tricell::SearchBackend backends[] = {
     tricell::SearchBackend::automatic, tricell::SearchBackend::dense,
-    tricell::SearchBackend::linked, tricell::SearchBackend::hash};
+    tricell::SearchBackend::linked,    tricell::SearchBackend::hash,
+    tricell::SearchBackend::octree,    tricell::SearchBackend::direct};
 
 } // namespace
 
@@ -348,13 +348,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     options.max_pairs = max_pairs;
     options.quantities.shifts = options.quantities.distances = options.quantities.vectors = true;
 
-    // Open core defect (main f538cc9): a denormal cutoff over cells_per_cutoff 2 underflows the
-    // cell size to 0, and an open axis of zero thickness then has 0 / 0 = NaN cells, cast to
-    // int (grid.cpp, cells_along). Input: known/search-nan-cells-denormal-cutoff. Remove when
-    // fixed.
-    if (options.cutoff > 0 && options.cutoff < std::numeric_limits<double>::min()) {
-        return 0;
-    }
     // Speed, not correctness: a cutoff of ~100 perpendicular widths takes the search ~0.5 s
     // per backend under the sanitizers (tens of thousands of image offsets), too slow for a
     // fuzzer that wants thousands of inputs per second.

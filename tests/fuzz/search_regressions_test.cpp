@@ -35,8 +35,9 @@ void expect_oracle(Case c) {
         expected = tricell::testing::canonical_half(expected);
     }
     c.options.quantities.vectors = true;
-    for (SearchBackend backend : {SearchBackend::automatic, SearchBackend::dense,
-                                  SearchBackend::linked, SearchBackend::hash}) {
+    for (SearchBackend backend :
+         {SearchBackend::automatic, SearchBackend::dense, SearchBackend::linked,
+          SearchBackend::hash, SearchBackend::octree, SearchBackend::direct}) {
         SCOPED_TRACE(tricell::backend_name(backend));
         c.options.backend = backend;
         const tricell::NeighborList list = tricell::compute_neighbors(box, c.x, c.options);
@@ -119,10 +120,10 @@ TEST(SearchRegressions, TinyCutoffInAnOpenBoxHasAFiniteEstimate) {
     expect_oracle(c);
 }
 
-// Open defect (grid.cpp, cells_along): a denormal cutoff over cells_per_cutoff 2 underflows the
-// cell size to 0, and the open axis a of zero thickness then has 0 / 0 = NaN cells, cast to
-// int (undefined behaviour, caught by UBSan). Enable when fixed.
-TEST(SearchRegressions, DISABLED_DenormalCutoffWithFinerCellsAndAFlatOpenAxis) {
+// A denormal cutoff over cells_per_cutoff 2 underflowed the cell size to 0, and the open axis a
+// of zero thickness then had 0 / 0 = NaN cells, cast to int (undefined behaviour, caught by
+// UBSan); grid.cpp's cells_along now gives such an axis one cell.
+TEST(SearchRegressions, DenormalCutoffWithFinerCellsAndAFlatOpenAxis) {
     Case c{"denormal cutoff, 2 cells per cutoff",
            Eigen::Vector3d(5, 5, 0.7).asDiagonal(),
            {},
