@@ -28,6 +28,7 @@ module tricell
     integer, parameter, public :: TRICELL_BACKEND_LINKED = 2
     integer, parameter, public :: TRICELL_BACKEND_HASH = 3
     integer, parameter, public :: TRICELL_BACKEND_OCTREE = 4
+    integer, parameter, public :: TRICELL_BACKEND_DIRECT = 5
 
     ! The C structs of tricell.h, field for field.
     type, bind(c) :: c_box

@@ -98,7 +98,8 @@ typedef enum tricell_backend {
     TRICELL_BACKEND_DENSE = 1,     /* a dense cell grid, atoms sorted by cell */
     TRICELL_BACKEND_LINKED = 2,    /* the same grid as linked cells */
     TRICELL_BACKEND_HASH = 3,      /* compact hashing of the non-empty cells */
-    TRICELL_BACKEND_OCTREE = 4     /* an adaptive octree */
+    TRICELL_BACKEND_OCTREE = 4,    /* an adaptive octree */
+    TRICELL_BACKEND_DIRECT = 5     /* every pair through every image: tiny cells */
 } tricell_backend;
 
 /* One entry of a per-species cutoff table: pairs of species a and b (either order) count when

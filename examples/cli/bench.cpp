@@ -39,7 +39,7 @@ Options:
                       D (vectors); default "ijSd"
   --repeat K          timed calls, K >= 1 (default 10)
   --threads T         threads, T >= 0, 0 = all hardware threads (default 1)
-  --backend B         auto (default), dense, linked, hash or octree
+  --backend B         auto (default), dense, linked, hash, octree or direct
   --max-pairs N       refuse lists of more than N pairs before allocating them (default
                       500000000; 0 = no limit)
   --input-format F    cif, xyz or poscar, instead of the guess from the file name

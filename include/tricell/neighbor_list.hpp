@@ -5,7 +5,8 @@
 // twin when the cell is strongly skewed), wraps every position into the box along periodic axes
 // remembering the integer image it came from, checks the expected pair count against max_pairs
 // before anything large is allocated, and hands the wrapped fractional positions to a backend.
-// A backend (lib/backends/: dense sorted grid, linked head/next grid, compact hash, octree) only
+// A backend (lib/backends/: dense sorted grid, linked head/next grid, compact hash, octree,
+// direct image enumeration) only
 // bins the atoms and enumerates candidate (atom range, atom range, image shift) triples; the
 // shared distance test, pair storage, half-list orientation, variable cutoffs, threads and the
 // ordered merge, sorting and the map of shifts back to the caller's lattice vectors live once, in

@@ -42,7 +42,8 @@ static_assert(int(SearchBackend::automatic) == TRICELL_BACKEND_AUTOMATIC &&
                   int(SearchBackend::dense) == TRICELL_BACKEND_DENSE &&
                   int(SearchBackend::linked) == TRICELL_BACKEND_LINKED &&
                   int(SearchBackend::hash) == TRICELL_BACKEND_HASH &&
-                  int(SearchBackend::octree) == TRICELL_BACKEND_OCTREE,
+                  int(SearchBackend::octree) == TRICELL_BACKEND_OCTREE &&
+                  int(SearchBackend::direct) == TRICELL_BACKEND_DIRECT,
               "tricell_backend follows tricell::SearchBackend");
 
 void to_options(const tricell_neighbor_options& options, std::size_t atoms, NeighborOptions& out) {

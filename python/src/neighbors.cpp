@@ -193,7 +193,7 @@ species missing from it never counts; compute() then takes species=, one per poi
 for per-atom radii (compute() then takes radii=; a pair counts when d < r_i + r_j).
 full=False keeps each pair once (i < j, or i == j with S lexicographically positive).
 sorted=True orders pairs by i, then j, then S. threads=0 uses every core; the result is
-identical for any thread count. backend ("auto", "dense", "linked", "hash", "octree") changes
+identical for any thread count. backend ("auto", "dense", "linked", "hash", "octree", "direct") changes
 only the speed.)doc")
         .def(py::init<const py::object&, bool, bool, int, const std::string&>(), py::arg("cutoff"),
              py::arg("full") = true, py::arg("sorted") = false, py::arg("threads") = 1,

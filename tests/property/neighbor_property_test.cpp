@@ -1,7 +1,7 @@
 // Property tests of the neighbour search against the brute-force oracle over thousands of
 // random cases with fixed seeds (the seed is printed on failure). One typed suite runs every
-// property on every backend (dense, linked, hash, octree), and every backend is compared with the
-// dense one pair for pair.
+// property on every backend (dense, linked, hash, octree, direct), and every backend is compared
+// with the dense one pair for pair.
 #include <algorithm>
 #include <cstdint>
 #include <random>

@@ -209,7 +209,7 @@ TEST(NeighborList, RejectsBadVariableCutoffsNamingThem) {
                      "hash_table_size must be at most 2^31");
     EXPECT_THROW_MSG(
         tricell::parse_backend("fast"), tricell::InvalidArgument,
-        "unknown search backend 'fast' (expected auto, dense, linked, hash or octree)");
+        "unknown search backend 'fast' (expected auto, dense, linked, hash, octree or direct)");
     EXPECT_EQ(tricell::parse_backend("hash"), tricell::SearchBackend::hash);
 }
 
