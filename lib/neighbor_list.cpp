@@ -530,8 +530,11 @@ void append_in_order(NeighborList& out, std::vector<NeighborList>& partial,
     run_in_threads(sizes.size() - 1, [&](std::size_t k) {
         NeighborList& from = partial[k];
         const auto at = std::ptrdiff_t(offset[k + 1]);
+        // A column that is not stored is empty on both sides: no iterator arithmetic on it.
         auto copy = [](auto& source, auto& target, std::ptrdiff_t to) {
-            std::copy(source.begin(), source.end(), target.begin() + to);
+            if (!source.empty()) {
+                std::copy(source.begin(), source.end(), target.begin() + to);
+            }
         };
         copy(ListWriter::i(from), ListWriter::i(out), at);
         copy(ListWriter::j(from), ListWriter::j(out), at);
