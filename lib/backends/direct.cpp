@@ -63,8 +63,11 @@ class DirectBackend final : public Backend {
                         continue;
                     }
                     const double root = std::sqrt(disc);
-                    const int sc_lo = std::max(-m[2], int(std::floor((-ac - root) / cc)) - 1);
-                    const int sc_hi = std::min(m[2], int(std::ceil((-ac + root) / cc)) + 1);
+                    // Clamped to [-m, m] as doubles before the cast: with c nearly orthogonal to
+                    // a huge row the roots can lie far outside an int.
+                    const int sc_lo =
+                        int(std::max(double(-m[2]), std::floor((-ac - root) / cc) - 1));
+                    const int sc_hi = int(std::min(double(m[2]), std::ceil((-ac + root) / cc) + 1));
                     for (int sc = sc_lo; sc <= sc_hi; ++sc) {
                         const bool positive =
                             sa > 0 || (sa == 0 && (sb > 0 || (sb == 0 && sc > 0)));
