@@ -1,5 +1,7 @@
 #include "tricell/cell_list.hpp"
 
+#include "detail/parallel.hpp"
+
 namespace tricell {
 
 void LinkedCellList::build(const std::vector<std::uint32_t>& cell_of, std::size_t cell_count) {
@@ -12,7 +14,64 @@ void LinkedCellList::build(const std::vector<std::uint32_t>& cell_of, std::size_
     }
 }
 
-void SortedCellList::build(const std::vector<std::uint32_t>& cell_of, std::size_t cell_count) {
+// The threaded counting sort: thread t counts the cells of its contiguous range of atoms, the
+// offsets are laid out cell by cell and, within a cell, range by range (so the sort stays stable),
+// and each thread scatters its range from its own cursors. Three passes over the atoms or cells,
+// each split between the threads; the (cell, thread) table costs 4 bytes per cell per thread.
+void SortedCellList::build_threaded(const std::vector<std::uint32_t>& cell_of,
+                                    std::size_t cell_count, std::size_t threads) {
+    const std::size_t n = cell_of.size();
+    std::vector<std::uint32_t> cursor(threads * cell_count, 0); // [t * cell_count + c]
+    detail::parallel_ranges(n, threads, [&](std::size_t begin, std::size_t end, std::size_t t) {
+        std::uint32_t* count = cursor.data() + t * cell_count;
+        for (std::size_t i = begin; i < end; ++i) {
+            ++count[cell_of[i]];
+        }
+    });
+    // Atoms in each range of cells, then the offsets within each range.
+    std::vector<std::uint32_t> before(threads + 1, 0);
+    detail::parallel_ranges(cell_count, threads,
+                            [&](std::size_t begin, std::size_t end, std::size_t t) {
+                                std::uint32_t sum = 0;
+                                for (std::size_t c = begin; c < end; ++c) {
+                                    for (std::size_t u = 0; u < threads; ++u) {
+                                        sum += cursor[u * cell_count + c];
+                                    }
+                                }
+                                before[t + 1] = sum;
+                            });
+    for (std::size_t t = 0; t < threads; ++t) {
+        before[t + 1] += before[t];
+    }
+    start_.resize(cell_count + 1);
+    detail::parallel_ranges(cell_count, threads,
+                            [&](std::size_t begin, std::size_t end, std::size_t t) {
+                                std::uint32_t running = before[t];
+                                for (std::size_t c = begin; c < end; ++c) {
+                                    start_[c] = running;
+                                    for (std::size_t u = 0; u < threads; ++u) {
+                                        const std::uint32_t count = cursor[u * cell_count + c];
+                                        cursor[u * cell_count + c] = running;
+                                        running += count;
+                                    }
+                                }
+                            });
+    start_[cell_count] = static_cast<std::uint32_t>(n);
+    order_.resize(n);
+    detail::parallel_ranges(n, threads, [&](std::size_t begin, std::size_t end, std::size_t t) {
+        std::uint32_t* next = cursor.data() + t * cell_count;
+        for (std::size_t i = begin; i < end; ++i) {
+            order_[next[cell_of[i]]++] = static_cast<std::uint32_t>(i);
+        }
+    });
+}
+
+void SortedCellList::build(const std::vector<std::uint32_t>& cell_of, std::size_t cell_count,
+                           std::size_t threads) {
+    if (threads > 1) {
+        build_threaded(cell_of, cell_count, threads);
+        return;
+    }
     start_.assign(cell_count + 1, 0);
     for (const std::uint32_t c : cell_of) {
         ++start_[c + 1];

@@ -1,10 +1,12 @@
 // The shared part of every search (see include/tricell/neighbor_list.hpp): validation, the
-// search frame and the wrap, the pair-count estimate, the choice of backend, threads with the
-// ordered merge, sorting and the map of shifts back to the caller's lattice vectors.
+// search frame and the wrap, the pair-count estimate, the choice of backend, threads with their
+// ordered output (detail/ordered_output.hpp), sorting and the map of shifts back to the caller's
+// lattice vectors.
 #include "tricell/neighbor_list.hpp"
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <exception>
 #include <limits>
@@ -17,6 +19,8 @@
 #include "backends/backend.hpp"
 #include "detail/lattice_reduction.hpp"
 #include "detail/list_writer.hpp"
+#include "detail/ordered_output.hpp"
+#include "detail/parallel.hpp"
 #include "tricell/cost_model.hpp"
 #include "tricell/error.hpp"
 
@@ -68,33 +72,6 @@ void gather(PairArray<T>& v, const std::vector<std::size_t>& perm, std::size_t w
         }
     }
     v.swap(out);
-}
-
-// Runs task(0) .. task(count - 1), each on its own thread (task 0 on the calling thread).
-template <class Task> void run_in_threads(std::size_t count, Task&& task) {
-    std::vector<std::thread> workers;
-    workers.reserve(count > 0 ? count - 1 : 0);
-    try {
-        for (std::size_t t = 1; t < count; ++t) {
-            workers.emplace_back([&task, t] { task(t); });
-        }
-    } catch (...) { // could not start a thread: finish the started ones, then report
-        for (std::thread& w : workers) {
-            w.join();
-        }
-        throw;
-    }
-    if (count > 0) {
-        task(0);
-    }
-    for (std::thread& w : workers) {
-        w.join();
-    }
-}
-
-[[noreturn]] void too_many_pairs(std::size_t limit) {
-    detail::fail<InvalidArgument>("the neighbour list has more than max_pairs = ", limit,
-                                  " pairs; raise NeighborOptions::max_pairs to allow it");
 }
 
 } // namespace
@@ -357,13 +334,25 @@ void NeighborSearch::build(const Box& caller_box, PointsView positions,
     if (n > 0 && positions.data == nullptr) {
         detail::fail<InvalidArgument>("positions: null data for ", n, " points");
     }
-    for (std::size_t i = 0; i < n; ++i) {
-        const Eigen::Vector3d r = positions[i];
-        if (!r.allFinite()) {
-            detail::fail<InvalidArgument>("position ", i, " is not finite (got ", r.x(), ", ",
-                                          r.y(), ", ", r.z(), ")");
+    // The per-atom phases of a build (checks, wrap, binning, the atom table) run on the search's
+    // threads: serial, they bounded two threads well below 2x (see ordered_output.hpp). Threads
+    // asked for explicitly are used from 16 atoms per thread (so that the property tests run
+    // these phases on small systems), automatic ones from 16384, where a phase outweighs the
+    // start of a thread.
+    const std::size_t threads =
+        options.threads > 0
+            ? detail::threads_for(n, std::size_t(options.threads), 16)
+            : detail::threads_for(n, std::max<std::size_t>(1, std::thread::hardware_concurrency()),
+                                  16384);
+    detail::parallel_ranges(n, threads, [&](std::size_t begin, std::size_t end, std::size_t) {
+        for (std::size_t i = begin; i < end; ++i) {
+            const Eigen::Vector3d r = positions[i];
+            if (!r.allFinite()) {
+                detail::fail<InvalidArgument>("position ", i, " is not finite (got ", r.x(), ", ",
+                                              r.y(), ", ", r.z(), ")");
+            }
         }
-    }
+    });
     if (!state) {
         state = std::make_unique<detail::SearchState>();
     }
@@ -382,23 +371,34 @@ void NeighborSearch::build(const Box& caller_box, PointsView positions,
     // Wrap into the box along periodic axes, remembering the image: x = wrapped + H image.
     std::vector<Eigen::Vector3d> fractional(n);
     std::vector<std::int32_t> image(3 * n, 0);
+    std::vector<Eigen::Vector3d> range_lower(threads), range_upper(threads);
+    detail::parallel_ranges(n, threads, [&](std::size_t begin, std::size_t end, std::size_t t) {
+        for (std::size_t i = begin; i < end; ++i) {
+            WrappedFractional w;
+            try {
+                w = box.wrap(box.to_fractional(Cartesian(positions[i])));
+            } catch (const InvalidArgument& e) {
+                detail::fail<InvalidArgument>("position ", i, ": ", e.what());
+            }
+            fractional[i] = w.wrapped;
+            for (int k = 0; k < 3; ++k) {
+                image[3 * i + std::size_t(k)] = w.image[k];
+            }
+            if (i == begin) {
+                range_lower[t] = range_upper[t] = w.wrapped;
+            } else {
+                range_lower[t] = range_lower[t].cwiseMin(w.wrapped);
+                range_upper[t] = range_upper[t].cwiseMax(w.wrapped);
+            }
+        }
+    });
     Eigen::Vector3d lower = Eigen::Vector3d::Zero(), upper = Eigen::Vector3d::Zero();
-    for (std::size_t i = 0; i < n; ++i) {
-        WrappedFractional w;
-        try {
-            w = box.wrap(box.to_fractional(Cartesian(positions[i])));
-        } catch (const InvalidArgument& e) {
-            detail::fail<InvalidArgument>("position ", i, ": ", e.what());
-        }
-        fractional[i] = w.wrapped;
-        for (int k = 0; k < 3; ++k) {
-            image[3 * i + std::size_t(k)] = w.image[k];
-        }
-        if (i == 0) {
-            lower = upper = w.wrapped;
-        } else {
-            lower = lower.cwiseMin(w.wrapped);
-            upper = upper.cwiseMax(w.wrapped);
+    if (n > 0) {
+        lower = range_lower[0];
+        upper = range_upper[0];
+        for (std::size_t t = 1; t < threads; ++t) {
+            lower = lower.cwiseMin(range_lower[t]);
+            upper = upper.cwiseMax(range_upper[t]);
         }
     }
     if (!(cutoff > 0) || n == 0) {
@@ -439,8 +439,9 @@ void NeighborSearch::build(const Box& caller_box, PointsView positions,
     }
     s.backend = pooled.get();
     std::vector<std::uint32_t> order;
-    s.backend->bin(detail::BinningInput{box, fractional, lower, upper, s.search_radius, options},
-                   order);
+    s.backend->bin(
+        detail::BinningInput{box, fractional, lower, upper, s.search_radius, options, threads},
+        order);
 
     // Wrapped Cartesian positions, x - H image (exactly x for atoms already in the box), in the
     // backend's order.
@@ -450,17 +451,19 @@ void NeighborSearch::build(const Box& caller_box, PointsView positions,
     atoms.z.resize(n);
     atoms.image.resize(3 * n);
     atoms.index = std::move(order);
-    for (std::size_t k = 0; k < n; ++k) {
-        const std::size_t i = atoms.index[k];
-        const Eigen::Vector3d img(image[3 * i], image[3 * i + 1], image[3 * i + 2]);
-        const Eigen::Vector3d r = Eigen::Vector3d(positions[i]) - s.h * img;
-        atoms.x[k] = r.x();
-        atoms.y[k] = r.y();
-        atoms.z[k] = r.z();
-        for (std::size_t a = 0; a < 3; ++a) {
-            atoms.image[3 * k + a] = image[3 * i + a];
+    detail::parallel_ranges(n, threads, [&](std::size_t begin, std::size_t end, std::size_t) {
+        for (std::size_t k = begin; k < end; ++k) {
+            const std::size_t i = atoms.index[k];
+            const Eigen::Vector3d img(image[3 * i], image[3 * i + 1], image[3 * i + 2]);
+            const Eigen::Vector3d r = Eigen::Vector3d(positions[i]) - s.h * img;
+            atoms.x[k] = r.x();
+            atoms.y[k] = r.y();
+            atoms.z[k] = r.z();
+            for (std::size_t a = 0; a < 3; ++a) {
+                atoms.image[3 * k + a] = image[3 * i + a];
+            }
         }
-    }
+    });
     state_ = std::move(state);
 }
 
@@ -506,44 +509,6 @@ void sort_pairs(NeighborList& list, std::size_t atom_count) {
     gather(ListWriter::vectors(list), perm, 3);
 }
 
-// Appends the chunks' lists to `out` (which holds chunk 0) in chunk order, each copied to its
-// place by its own thread.
-void append_in_order(NeighborList& out, std::vector<NeighborList>& partial,
-                     const std::vector<std::size_t>& sizes, bool shifts, bool distances,
-                     bool vectors) {
-    std::vector<std::size_t> offset(sizes.size(), 0);
-    for (std::size_t t = 1; t < sizes.size(); ++t) {
-        offset[t] = offset[t - 1] + sizes[t - 1];
-    }
-    const std::size_t total = offset.back() + sizes.back();
-    ListWriter::i(out).resize(total);
-    ListWriter::j(out).resize(total);
-    if (shifts) {
-        ListWriter::shifts(out).resize(3 * total);
-    }
-    if (distances) {
-        ListWriter::distances(out).resize(total);
-    }
-    if (vectors) {
-        ListWriter::vectors(out).resize(3 * total);
-    }
-    run_in_threads(sizes.size() - 1, [&](std::size_t k) {
-        NeighborList& from = partial[k];
-        const auto at = std::ptrdiff_t(offset[k + 1]);
-        // A column that is not stored is empty on both sides: no iterator arithmetic on it.
-        auto copy = [](auto& source, auto& target, std::ptrdiff_t to) {
-            if (!source.empty()) {
-                std::copy(source.begin(), source.end(), target.begin() + to);
-            }
-        };
-        copy(ListWriter::i(from), ListWriter::i(out), at);
-        copy(ListWriter::j(from), ListWriter::j(out), at);
-        copy(ListWriter::shifts(from), ListWriter::shifts(out), 3 * at);
-        copy(ListWriter::distances(from), ListWriter::distances(out), at);
-        copy(ListWriter::vectors(from), ListWriter::vectors(out), 3 * at);
-    });
-}
-
 void to_caller_frame(PairArray<std::int32_t>& shifts, const Eigen::Matrix3i& t) {
     for (std::size_t k = 0; k < shifts.size(); k += 3) {
         const Eigen::Vector3i s = t * Eigen::Vector3i(shifts[k], shifts[k + 1], shifts[k + 2]);
@@ -579,78 +544,110 @@ void NeighborSearch::compute(NeighborList& out) const {
     }
     threads = std::max<std::size_t>(1, std::min(threads, units));
     try {
-        // Contiguous chunks of units of about equal work (from the occupancy moments); chunk t
-        // goes to thread t and the chunks are concatenated in unit order, so the result does not
-        // depend on `threads`. Each chunk reserves room for the pairs its occupancy predicts
-        // (untouched reserved memory is never resident), so the columns rarely grow.
         detail::UnitOccupancy occupancy;
         s.backend->occupancy(occupancy);
-        std::vector<std::size_t> bounds{0, units};
-        if (threads > 1) {
-            std::vector<double> work(units);
-            for (std::size_t u = 0; u < units; ++u) {
-                work[u] = occupancy_work(occupancy.atoms[u], occupancy.neighbours);
-            }
-            bounds = split_work(work, threads);
-        }
-        const std::size_t chunks = bounds.size() - 1;
         const double sphere = 4.0 / 3.0 * pi * std::pow(s.rule.max_cutoff(), 3);
         const double box_volume = std::abs(s.h.determinant());
-        std::vector<std::size_t> reserve(chunks);
-        for (std::size_t t = 0; t < chunks; ++t) {
+        const double half_factor = s.options.half ? 0.5 : 1.0;
+        auto columns_of = [&](NeighborList& list) {
+            return detail::PairColumns{&ListWriter::i(list), &ListWriter::j(list),
+                                       keep_shifts ? &ListWriter::shifts(list) : nullptr,
+                                       q.distances ? &ListWriter::distances(list) : nullptr,
+                                       q.vectors ? &ListWriter::vectors(list) : nullptr};
+        };
+        // Room for `expected` pairs up front, at most 2^24 pairs (about 470 MB with D) per
+        // list; untouched reserved memory is never resident, so the columns rarely grow.
+        auto room = [](double expected) {
+            return std::isfinite(expected) && expected < 1.6e7
+                       ? static_cast<std::size_t>(expected * 1.1) + 1024
+                       : std::size_t(1) << 24;
+        };
+        if (threads == 1) {
             double expected = 0;
-            for (std::size_t u = bounds[t]; u < bounds[t + 1]; ++u) {
+            for (std::size_t u = 0; u < units; ++u) {
                 expected +=
                     expected_pairs(occupancy.atoms[u], occupancy.volume[u] * box_volume, sphere);
             }
-            expected *= s.options.half ? 0.5 : 1.0;
-            // At most 2^24 pairs up front (about 470 MB with D); longer lists grow from there.
-            reserve[t] = std::isfinite(expected) && expected < 1.6e7
-                             ? static_cast<std::size_t>(expected * 1.1) + 1024
-                             : std::size_t(1) << 24;
-        }
-
-        // Chunk 0 writes straight into `out`, the others into their own lists.
-        std::vector<NeighborList> partial;
-        partial.swap(ListWriter::partial(out));
-        partial.resize(chunks - 1);
-        std::vector<std::size_t> sizes(chunks, 0);
-        std::vector<std::exception_ptr> errors(chunks);
-        auto run_chunk = [&](std::size_t t) {
-            try {
-                NeighborList& list = t == 0 ? out : partial[t - 1];
-                const detail::PairColumns columns{&ListWriter::i(list), &ListWriter::j(list),
-                                                  keep_shifts ? &ListWriter::shifts(list) : nullptr,
-                                                  q.distances ? &ListWriter::distances(list)
-                                                              : nullptr,
-                                                  q.vectors ? &ListWriter::vectors(list) : nullptr};
-                detail::PairSink sink(columns, s.options.max_pairs, reserve[t]);
-                detail::CandidateScanner scan(s.atoms, s.h, s.cutoff_sq, s.rule, s.options.half,
-                                              s.to_caller, s.reduced_frame, sink);
-                s.backend->visit(bounds[t], bounds[t + 1], scan);
-                sink.finish();
-                sizes[t] = sink.size();
-            } catch (...) {
-                errors[t] = std::current_exception();
+            detail::PairSink sink(columns_of(out), s.options.max_pairs,
+                                  room(expected * half_factor));
+            detail::CandidateScanner scan(s.atoms, s.h, s.cutoff_sq, s.rule, s.options.half,
+                                          s.to_caller, s.reduced_frame, sink);
+            s.backend->visit(0, units, scan);
+            sink.finish();
+        } else {
+            // Batches of units of about equal work (from the occupancy moments), about
+            // batch_pairs pairs each, filled in place in unit order (ordered_output.hpp), so the
+            // result does not depend on `threads`. A batch's own columns (with i, j, S, d about
+            // 230 KB) stay in the core's L2 until they are copied out.
+            constexpr double batch_pairs = 8192;
+            std::vector<double> work(units), expected(units);
+            double total = 0;
+            for (std::size_t u = 0; u < units; ++u) {
+                work[u] = occupancy_work(occupancy.atoms[u], occupancy.neighbours);
+                expected[u] =
+                    half_factor *
+                    expected_pairs(occupancy.atoms[u], occupancy.volume[u] * box_volume, sphere);
+                total += expected[u];
             }
-        };
-        run_in_threads(chunks, run_chunk);
-        for (const std::exception_ptr& e : errors) {
-            if (e) {
-                std::rethrow_exception(e);
+            const double wanted = std::isfinite(total) ? std::ceil(total / batch_pairs) : 1e9;
+            const auto batches_wanted =
+                static_cast<std::size_t>(std::clamp(wanted, 4.0 * double(threads), 1e9));
+            const std::vector<std::size_t> bounds = split_work(work, batches_wanted);
+            const std::size_t batches = bounds.size() - 1;
+            std::vector<std::size_t> reserve(batches);
+            for (std::size_t b = 0; b < batches; ++b) {
+                double e = 0;
+                for (std::size_t u = bounds[b]; u < bounds[b + 1]; ++u) {
+                    e += expected[u];
+                }
+                reserve[b] = room(e);
             }
-        }
-        if (chunks > 1) {
-            const std::size_t total = std::accumulate(sizes.begin(), sizes.end(), std::size_t(0));
-            if (s.options.max_pairs != 0 && total > s.options.max_pairs) {
-                too_many_pairs(s.options.max_pairs);
+            const detail::PairColumns final_columns = columns_of(out);
+            detail::OrderedOutput output(final_columns,
+                                         std::max(room(total), ListWriter::i(out).capacity()),
+                                         s.options.max_pairs);
+            // Each thread's batch columns, kept in `out` between calls so they are not faulted
+            // in again.
+            std::vector<NeighborList> local;
+            local.swap(ListWriter::partial(out));
+            local.resize(threads);
+            std::vector<std::exception_ptr> errors(threads);
+            std::atomic<std::size_t> next{0};
+            detail::run_in_threads(threads, [&](std::size_t t) {
+                try {
+                    const detail::PairColumns columns = columns_of(local[t]);
+                    for (;;) {
+                        const std::size_t b = next.fetch_add(1);
+                        if (b >= batches) {
+                            break;
+                        }
+                        detail::PairSink sink(columns, s.options.max_pairs, reserve[b]);
+                        detail::CandidateScanner scan(s.atoms, s.h, s.cutoff_sq, s.rule,
+                                                      s.options.half, s.to_caller, s.reduced_frame,
+                                                      sink);
+                        s.backend->visit(bounds[b], bounds[b + 1], scan);
+                        std::size_t offset = 0;
+                        if (!output.place(b, sink.size(), offset)) {
+                            break; // another thread failed
+                        }
+                        output.write(offset, columns, sink.size());
+                    }
+                } catch (...) {
+                    errors[t] = std::current_exception();
+                    output.abort();
+                }
+            });
+            for (NeighborList& list : local) {
+                list.clear();
             }
-            append_in_order(out, partial, sizes, keep_shifts, q.distances, q.vectors);
+            ListWriter::partial(out).swap(local);
+            for (const std::exception_ptr& e : errors) {
+                if (e) {
+                    std::rethrow_exception(e);
+                }
+            }
+            output.finish();
         }
-        for (NeighborList& list : partial) {
-            list.clear();
-        }
-        ListWriter::partial(out).swap(partial);
         if (s.reduced_frame && keep_shifts) {
             to_caller_frame(ListWriter::shifts(out), s.to_caller);
         }

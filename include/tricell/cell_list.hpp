@@ -41,8 +41,10 @@ class TRICELL_API LinkedCellList {
 class TRICELL_API SortedCellList {
   public:
     /// cell_of[i] in [0, cell_count) is the cell of atom i. Stable: atoms of one cell keep their
-    /// original relative order.
-    void build(const std::vector<std::uint32_t>& cell_of, std::size_t cell_count);
+    /// original relative order. With `threads` > 1 the sort runs on that many threads (the same
+    /// result).
+    void build(const std::vector<std::uint32_t>& cell_of, std::size_t cell_count,
+               std::size_t threads = 1);
 
     /// Sorted range of cell c: [cell_start(c), cell_end(c)).
     std::uint32_t cell_start(std::size_t c) const { return start_[c]; }
@@ -54,6 +56,8 @@ class TRICELL_API SortedCellList {
     std::size_t atom_count() const { return order_.size(); }
 
   private:
+    void build_threaded(const std::vector<std::uint32_t>& cell_of, std::size_t cell_count,
+                        std::size_t threads);
     std::vector<std::uint32_t> start_; // cell_count + 1 offsets
     std::vector<std::uint32_t> order_;
 };

@@ -38,6 +38,7 @@ struct BinningInput {
     Eigen::Vector3d lower, upper;                   ///< extent of the positions, per axis
     double search_radius;                           ///< largest cutoff plus a rounding margin
     const NeighborOptions& options;                 ///< tuning knobs (half, max_cells, ...)
+    std::size_t threads = 1;                        ///< threads the binning may use
 };
 
 class Backend {

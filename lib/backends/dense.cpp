@@ -7,6 +7,7 @@
 
 #include "backends/backend.hpp"
 #include "backends/grid_neighbourhood.hpp"
+#include "detail/parallel.hpp"
 #include "tricell/cell_list.hpp"
 
 namespace tricell::detail {
@@ -20,10 +21,12 @@ class DenseBackend final : public Backend {
         cells_.build(input, input.options.max_cells != 0 ? input.options.max_cells : 4 * n + 64,
                      true);
         std::vector<std::uint32_t> cell_of(n);
-        for (std::size_t i = 0; i < n; ++i) {
-            cell_of[i] = static_cast<std::uint32_t>(cells_.grid().cell_of(input.fractional[i]));
-        }
-        sorted_.build(cell_of, cells_.grid().cell_count());
+        parallel_ranges(n, input.threads, [&](std::size_t begin, std::size_t end, std::size_t) {
+            for (std::size_t i = begin; i < end; ++i) {
+                cell_of[i] = static_cast<std::uint32_t>(cells_.grid().cell_of(input.fractional[i]));
+            }
+        });
+        sorted_.build(cell_of, cells_.grid().cell_count(), input.threads);
         order = sorted_.order();
     }
 

@@ -87,6 +87,9 @@ NeighborOptions options_for(std::uint64_t seed, double cutoff, SearchBackend bac
     if (rng() % 2 == 0) {
         o.leaf_size = 1 + rng() % 12; // octree leaves from one atom up
     }
+    if (rng() % 2 == 0) {
+        o.threads = 1 + int(rng() % 4); // the threaded build and the ordered in-place output
+    }
     return o;
 }
 
@@ -391,7 +394,7 @@ TYPED_TEST(NeighborProperty, OutputIdenticalForAnyThreadCount_RandomCases) {
         o.half = seed % 2 == 1;
         o.threads = 1;
         const NeighborList one = tricell::compute_neighbors(sys.box(), sys.positions, o);
-        for (const int threads : {2, 3, 0}) {
+        for (const int threads : {2, 3, 4, 0}) {
             o.threads = threads;
             const NeighborList many = tricell::compute_neighbors(sys.box(), sys.positions, o);
             ASSERT_EQ(one.i(), many.i()) << threads << " threads";

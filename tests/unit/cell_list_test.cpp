@@ -1,3 +1,5 @@
+#include <algorithm>
+#include <cstdint>
 #include <random>
 #include <vector>
 
@@ -46,5 +48,37 @@ TEST(CellLists, EmptyInputGivesEmptyCells) {
     for (std::size_t c = 0; c < 4; ++c) {
         EXPECT_EQ(linked.head(c), tricell::LinkedCellList::end);
         EXPECT_EQ(sorted.cell_start(c), sorted.cell_end(c));
+    }
+}
+
+TEST(CellLists, ThreadedSortEqualsAStableSortByCell) {
+    // Oracle: std::stable_sort of the atom indices by cell. Cell counts from 1 (every atom in one
+    // cell) to more cells than atoms (most empty), atom counts from 0, threads from 1 to 5.
+    for (std::uint64_t seed = 0; seed < 200; ++seed) {
+        SCOPED_TRACE(seed);
+        std::mt19937_64 rng(seed);
+        const std::size_t atoms = rng() % 300;
+        const std::size_t cells = 1 + rng() % 400;
+        std::vector<std::uint32_t> cell_of(atoms);
+        for (std::uint32_t& c : cell_of) {
+            c = static_cast<std::uint32_t>(rng() % cells);
+        }
+        std::vector<std::uint32_t> expected(atoms);
+        for (std::size_t i = 0; i < atoms; ++i) {
+            expected[i] = static_cast<std::uint32_t>(i);
+        }
+        std::stable_sort(expected.begin(), expected.end(),
+                         [&](std::uint32_t a, std::uint32_t b) { return cell_of[a] < cell_of[b]; });
+        const std::size_t threads = 1 + seed % 5;
+        tricell::SortedCellList sorted;
+        sorted.build(cell_of, cells, threads);
+        ASSERT_EQ(sorted.order(), expected) << threads << " threads";
+        ASSERT_EQ(sorted.cell_count(), cells);
+        for (std::size_t c = 0; c < cells; ++c) {
+            for (std::uint32_t k = sorted.cell_start(c); k < sorted.cell_end(c); ++k) {
+                ASSERT_EQ(cell_of[sorted.original(k)], c);
+            }
+        }
+        ASSERT_EQ(sorted.cell_end(cells - 1), atoms);
     }
 }

@@ -244,6 +244,29 @@ TEST(NeighborList, RejectsPositionTooFarToWrap) {
                      tricell::InvalidArgument, "position 1: fractional coordinate a");
 }
 
+TEST(NeighborList, ThreadedBuildNamesTheFirstBadPosition) {
+    // The checks and the wrap run on contiguous ranges of atoms, one per thread: the error names
+    // the lowest bad index whatever the thread count, and a non-finite position anywhere comes
+    // before a position too far to wrap.
+    for (const int threads : {1, 2, 3, 4}) {
+        SCOPED_TRACE(threads);
+        std::vector<Eigen::Vector3d> x(200, Eigen::Vector3d(1, 1, 1));
+        NeighborOptions o = with_cutoff(1);
+        o.threads = threads;
+        x[170].z() = std::numeric_limits<double>::infinity();
+        x[190].x() = std::numeric_limits<double>::quiet_NaN();
+        EXPECT_THROW_MSG(tricell::compute_neighbors(cube10, x, o), tricell::InvalidArgument,
+                         "position 170 is not finite");
+        x[150].x() = 1e12;
+        x[160].y() = 1e12;
+        EXPECT_THROW_MSG(tricell::compute_neighbors(cube10, x, o), tricell::InvalidArgument,
+                         "position 170 is not finite");
+        x[170].z() = x[190].x() = 1;
+        EXPECT_THROW_MSG(tricell::compute_neighbors(cube10, x, o), tricell::InvalidArgument,
+                         "position 150: fractional coordinate a");
+    }
+}
+
 TEST(NeighborList, RefusesAbsurdPairCountBeforeAllocating) {
     const std::vector<Eigen::Vector3d> x{{0, 0, 0}, {1, 1, 1}};
     NeighborOptions o = with_cutoff(5000);
