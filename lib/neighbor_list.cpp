@@ -562,14 +562,22 @@ void NeighborSearch::compute(NeighborList& out) const {
                        ? static_cast<std::size_t>(expected * 1.1) + 1024
                        : std::size_t(1) << 24;
         };
-        if (threads == 1) {
-            double expected = 0;
-            for (std::size_t u = 0; u < units; ++u) {
-                expected +=
-                    expected_pairs(occupancy.atoms[u], occupancy.volume[u] * box_volume, sphere);
-            }
-            detail::PairSink sink(columns_of(out), s.options.max_pairs,
-                                  room(expected * half_factor));
+        std::vector<double> expected(units);
+        double total = 0;
+        for (std::size_t u = 0; u < units; ++u) {
+            expected[u] = half_factor * expected_pairs(occupancy.atoms[u],
+                                                       occupancy.volume[u] * box_volume, sphere);
+            total += expected[u];
+        }
+        // One thread writes a small list straight into `out` (where it stays in cache for the
+        // caller). A large one goes through the batches even on one thread: each batch is scanned
+        // into columns that stay in L2 and streamed out with non-temporal stores, which skips
+        // reading every output line from memory before overwriting it. Measured on one core
+        // (in-process, interleaved, loaded machine): random triclinic 1e5 atoms 5-12% faster,
+        // diamond 16x16x16 the same.
+        constexpr double streamed_pairs = 1 << 18;
+        if (threads == 1 && !(total >= streamed_pairs)) {
+            detail::PairSink sink(columns_of(out), s.options.max_pairs, room(total));
             detail::CandidateScanner scan(s.atoms, s.h, s.cutoff_sq, s.rule, s.options.half,
                                           s.to_caller, s.reduced_frame, sink);
             s.backend->visit(0, units, scan);
@@ -580,14 +588,9 @@ void NeighborSearch::compute(NeighborList& out) const {
             // result does not depend on `threads`. A batch's own columns (with i, j, S, d about
             // 230 KB) stay in the core's L2 until they are copied out.
             constexpr double batch_pairs = 8192;
-            std::vector<double> work(units), expected(units);
-            double total = 0;
+            std::vector<double> work(units);
             for (std::size_t u = 0; u < units; ++u) {
                 work[u] = occupancy_work(occupancy.atoms[u], occupancy.neighbours);
-                expected[u] =
-                    half_factor *
-                    expected_pairs(occupancy.atoms[u], occupancy.volume[u] * box_volume, sphere);
-                total += expected[u];
             }
             const double wanted = std::isfinite(total) ? std::ceil(total / batch_pairs) : 1e9;
             const auto batches_wanted =
@@ -603,7 +606,7 @@ void NeighborSearch::compute(NeighborList& out) const {
                 reserve[b] = room(e);
             }
             const detail::PairColumns final_columns = columns_of(out);
-            detail::OrderedOutput output(final_columns,
+            detail::OrderedOutput output(final_columns, batches,
                                          std::max(room(total), ListWriter::i(out).capacity()),
                                          s.options.max_pairs);
             // Each thread's batch columns, kept in `out` between calls so they are not faulted
@@ -616,21 +619,44 @@ void NeighborSearch::compute(NeighborList& out) const {
             detail::run_in_threads(threads, [&](std::size_t t) {
                 try {
                     const detail::PairColumns columns = columns_of(local[t]);
+                    // This thread's scanned batches not yet copied out: (batch, first pair in
+                    // `columns`, pairs), in batch order; `used` pairs of `columns` are taken.
+                    struct Pending {
+                        std::size_t batch, start, size;
+                    };
+                    std::vector<Pending> pending;
+                    std::size_t used = 0;
+                    auto copy_placed = [&](std::size_t placed) {
+                        std::size_t k = 0;
+                        for (; k < pending.size() && pending[k].batch < placed; ++k) {
+                            output.write(output.offset(pending[k].batch), columns, pending[k].start,
+                                         pending[k].size);
+                        }
+                        pending.erase(pending.begin(), pending.begin() + std::ptrdiff_t(k));
+                        if (pending.empty()) {
+                            used = 0;
+                        }
+                    };
                     for (;;) {
                         const std::size_t b = next.fetch_add(1);
-                        if (b >= batches) {
+                        if (b >= batches || output.aborted()) {
                             break;
                         }
-                        detail::PairSink sink(columns, s.options.max_pairs, reserve[b]);
+                        detail::PairSink sink(columns, s.options.max_pairs, reserve[b], used);
                         detail::CandidateScanner scan(s.atoms, s.h, s.cutoff_sq, s.rule,
                                                       s.options.half, s.to_caller, s.reduced_frame,
                                                       sink);
                         s.backend->visit(bounds[b], bounds[b + 1], scan);
-                        std::size_t offset = 0;
-                        if (!output.place(b, sink.size(), offset)) {
+                        pending.push_back(Pending{b, used, sink.size() - used});
+                        used = sink.size();
+                        copy_placed(output.finished(b, pending.back().size));
+                    }
+                    while (!pending.empty()) {
+                        const std::size_t placed = output.wait_placed(pending.front().batch);
+                        if (placed == 0) {
                             break; // another thread failed
                         }
-                        output.write(offset, columns, sink.size());
+                        copy_placed(placed);
                     }
                 } catch (...) {
                     errors[t] = std::current_exception();

@@ -30,11 +30,12 @@ class PairSink {
   public:
     static constexpr std::size_t block_size = 256;
 
-    /// Storing mode: appends to `columns`, starting with room for `initial` pairs, never more
-    /// than `limit` pairs (0: no limit).
-    PairSink(const PairColumns& columns, std::size_t limit, std::size_t initial)
-        : columns_(columns), limit_(limit) {
-        resize(limit_ != 0 ? std::min(initial, limit_) : initial);
+    /// Storing mode: appends to `columns` after their first `start` pairs (kept), starting with
+    /// room for `initial` more, never more than `limit` pairs in all (0: no limit).
+    PairSink(const PairColumns& columns, std::size_t limit, std::size_t initial,
+             std::size_t start = 0)
+        : columns_(columns), size_(start), limit_(limit) {
+        resize(limit_ != 0 ? std::min(start + initial, std::max(start, limit_)) : start + initial);
     }
 
     /// Block mode: every block_size pairs (and at finish()) calls on_block(context, block),
@@ -74,7 +75,8 @@ class PairSink {
         ++size_;
     }
 
-    /// Pairs stored so far (storing mode) or in the current block (block mode).
+    /// Pairs in the columns so far, `start` included (storing mode), or in the current block
+    /// (block mode).
     std::size_t size() const { return size_; }
 
     /// Storing mode: trims the columns to the pairs added. Block mode: hands out the last block.
@@ -138,12 +140,13 @@ class PairSink {
     }
 
     PairColumns columns_;
+    std::size_t size_ = 0;
     std::uint32_t* pi_ = nullptr;
     std::uint32_t* pj_ = nullptr;
     std::int32_t* ps_ = nullptr;
     double* pd_ = nullptr;
     double* pv_ = nullptr;
-    std::size_t size_ = 0, capacity_ = 0, limit_ = 0;
+    std::size_t capacity_ = 0, limit_ = 0;
 
     // Block mode.
     void (*on_block_)(void*, const PairBlock&) = nullptr;

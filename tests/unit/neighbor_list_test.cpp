@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "support/brute_force.hpp"
 #include "support/expect_throw_msg.hpp"
 #include "tricell/detail/distance_kernel.hpp"
 #include "tricell/error.hpp"
@@ -242,6 +243,65 @@ TEST(NeighborList, RejectsPositionTooFarToWrap) {
     const std::vector<Eigen::Vector3d> x{{0, 0, 0}, {1e12, 0, 0}};
     EXPECT_THROW_MSG(tricell::compute_neighbors(cube10, x, with_cutoff(1)),
                      tricell::InvalidArgument, "position 1: fractional coordinate a");
+}
+
+TEST(NeighborList, BatchedOutputEqualsBruteForceForAnyThreadCount) {
+    // The batched in-place output (lib/detail/ordered_output.hpp): a list above 2^18 expected
+    // pairs, which takes it even on one thread, and clustered atoms whose list is several times
+    // the uniform-density estimate, so the final columns must grow while batches are copied in.
+    // The large lists reuse one list object (its per-thread batch columns too); the clustered
+    // ones start from an empty list each time, so that no capacity is left from before.
+    NeighborList reused;
+    for (std::uint64_t seed = 0; seed < 4; ++seed) {
+        SCOPED_TRACE(seed);
+        std::mt19937_64 rng(seed);
+        std::uniform_real_distribution<double> u(0, 10), jitter(-0.05, 0.05);
+        std::vector<Eigen::Vector3d> x;
+        double cutoff = 0.5;
+        if (seed % 2 == 0) {
+            for (int k = 0; k < 2000; ++k) {
+                x.emplace_back(u(rng), u(rng), u(rng));
+            }
+            cutoff = 2.6; // about 294000 pairs
+        } else {
+            for (int k = 0; k < 80; ++k) {
+                const double c = k < 40 ? 1.0 : 6.0;
+                x.emplace_back(c + jitter(rng), c + jitter(rng), c + jitter(rng));
+            }
+        }
+        const tricell::testing::PairMap expected =
+            tricell::testing::brute_force_pairs(cube10, x, cutoff);
+        NeighborOptions o = with_cutoff(cutoff);
+        o.quantities.vectors = true;
+        if (seed % 2 == 1) {
+            o.backend = tricell::SearchBackend::dense;
+            o.max_cells = 8; // cells of 5: the per-cell estimate cannot see the clusters
+        }
+        NeighborList first;
+        for (const int threads : {1, 2, 3, 4}) {
+            SCOPED_TRACE(threads);
+            o.threads = threads;
+            NeighborList fresh;
+            NeighborList& list = seed % 2 == 0 ? reused : fresh;
+            tricell::compute_neighbors(cube10, x, o, list);
+            ASSERT_EQ(list.size(), expected.size());
+            if (threads == 1) {
+                first = list;
+                const tricell::testing::PairMap found = tricell::testing::to_map(list);
+                for (const auto& [key, value] : expected) {
+                    const auto it = found.find(key);
+                    ASSERT_NE(it, found.end());
+                    EXPECT_NEAR(it->second.distance, value.distance, 1e-12);
+                }
+            } else {
+                ASSERT_EQ(list.i(), first.i());
+                ASSERT_EQ(list.j(), first.j());
+                ASSERT_EQ(list.shifts(), first.shifts());
+                ASSERT_EQ(list.distances(), first.distances());
+                ASSERT_EQ(list.vectors(), first.vectors());
+            }
+        }
+    }
 }
 
 TEST(NeighborList, ThreadedBuildNamesTheFirstBadPosition) {
