@@ -8,8 +8,8 @@
 // A backend (lib/backends/: dense sorted grid, linked head/next grid, compact hash, octree,
 // direct image enumeration) only
 // bins the atoms and enumerates candidate (atom range, atom range, image shift) triples; the
-// shared distance test, pair storage, half-list orientation, variable cutoffs, threads and the
-// ordered merge, sorting and the map of shifts back to the caller's lattice vectors live once, in
+// shared distance test, pair storage, half-list orientation, variable cutoffs, threads and their
+// ordered output, sorting and the map of shifts back to the caller's lattice vectors live once, in
 // lib/. The image shift reported for a pair is relative to the caller's own positions,
 // S = (cell shift) + (image of i) - (image of j), so D = x_j - x_i + H S holds for the positions
 // as given, even far outside the box.
@@ -107,8 +107,8 @@ struct TRICELL_API NeighborOptions {
     /// Search a strongly skewed periodic cell in its reduced twin (same lattice, rounder cell),
     /// so a sheared box costs what the reduced one costs. Never changes the result.
     bool reduce_cell = true;
-    /// Threads for NeighborSearch::compute(); 0 means all hardware threads. The stored list is
-    /// identical, pair for pair and in the same order, whatever the number of threads.
+    /// Threads for NeighborSearch::build() and compute(); 0 means all hardware threads. The stored
+    /// list is identical, pair for pair and in the same order, whatever the number of threads.
     /// (for_each_pair() always runs on the calling thread.)
     int threads = 1;
 
@@ -182,8 +182,8 @@ class TRICELL_API NeighborList {
     PairArray<std::int32_t> shifts_;
     PairArray<double> distances_, vectors_;
     std::vector<std::size_t> offsets_;
-    // Per-thread lists of a threaded compute(), kept so that their memory is reused by the next
-    // call instead of being faulted in again.
+    // Per-thread batch columns of a batched compute() (lib/detail/ordered_output.hpp), kept so
+    // that their memory is reused by the next call instead of being faulted in again.
     std::vector<NeighborList> partial_;
 };
 
