@@ -1,5 +1,7 @@
 #include "tricell/cell_list.hpp"
 
+#include <algorithm>
+
 #include "detail/parallel.hpp"
 
 namespace tricell {
@@ -68,6 +70,9 @@ void SortedCellList::build_threaded(const std::vector<std::uint32_t>& cell_of,
 
 void SortedCellList::build(const std::vector<std::uint32_t>& cell_of, std::size_t cell_count,
                            std::size_t threads) {
+    // The (cell, thread) table stays within twice the serial sort's memory (atoms plus cells).
+    threads =
+        std::min(threads, 2 * (cell_of.size() + cell_count) / std::max<std::size_t>(cell_count, 1));
     if (threads > 1) {
         build_threaded(cell_of, cell_count, threads);
         return;

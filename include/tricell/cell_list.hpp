@@ -41,8 +41,8 @@ class TRICELL_API LinkedCellList {
 class TRICELL_API SortedCellList {
   public:
     /// cell_of[i] in [0, cell_count) is the cell of atom i. Stable: atoms of one cell keep their
-    /// original relative order. With `threads` > 1 the sort runs on that many threads (the same
-    /// result).
+    /// original relative order. With `threads` > 1 the sort runs on up to that many threads (the
+    /// same result; fewer when there are many more cells than atoms, to bound its memory).
     void build(const std::vector<std::uint32_t>& cell_of, std::size_t cell_count,
                std::size_t threads = 1);
 
