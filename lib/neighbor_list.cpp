@@ -588,6 +588,7 @@ void NeighborSearch::compute(NeighborList& out) const {
             // result does not depend on `threads`. A batch's own columns (with i, j, S, d about
             // 230 KB) stay in the core's L2 until they are copied out.
             constexpr double batch_pairs = 8192;
+            constexpr std::size_t max_pending = 16; // scanned batches a thread holds, at most
             std::vector<double> work(units);
             for (std::size_t u = 0; u < units; ++u) {
                 work[u] = occupancy_work(occupancy.atoms[u], occupancy.neighbours);
@@ -650,6 +651,16 @@ void NeighborSearch::compute(NeighborList& out) const {
                         pending.push_back(Pending{b, used, sink.size() - used});
                         used = sink.size();
                         copy_placed(output.finished(b, pending.back().size));
+                        // Run ahead of a stalled neighbour (a descheduled thread on a loaded
+                        // machine) by a bounded amount only: past that, wait for it, so the
+                        // batch columns stay a few MB instead of growing towards the list.
+                        if (pending.size() >= max_pending) {
+                            const std::size_t placed = output.wait_placed(pending.front().batch);
+                            if (placed == 0) {
+                                break; // another thread failed
+                            }
+                            copy_placed(placed);
+                        }
                     }
                     while (!pending.empty()) {
                         const std::size_t placed = output.wait_placed(pending.front().batch);

@@ -7,9 +7,10 @@
 // is the concatenation of the batches in unit order, whatever the thread count, with no merge
 // copy of per-thread lists afterwards (that copy was a serial tail of the two-thread search: one
 // thread copied the second half of the list while the other waited) and no second list in
-// memory. A thread never waits for another before the last batch: a batch that cannot be placed
-// yet stays in its owner's columns, behind which the owner scans its next batch; usually that is
-// one batch (two threads finishing neighbouring batches at about the same time).
+// memory. A thread does not wait for another when a batch cannot be placed yet: the batch stays
+// in its owner's columns, behind which the owner scans its next batch; usually that is one batch
+// (two threads finishing neighbouring batches at about the same time). Only a thread holding many
+// such batches (a stalled neighbour), or at the end, waits.
 //
 // The columns start at the estimated size (untouched capacity is never resident) and grow,
 // rarely, under an exclusive lock while no copy is running.
