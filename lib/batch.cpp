@@ -7,6 +7,7 @@
 #include <limits>
 #include <thread>
 
+#include "detail/parallel.hpp"
 #include "tricell/error.hpp"
 
 namespace tricell {
@@ -88,27 +89,7 @@ std::vector<std::size_t> split_by_cost(const BatchStructure* structures, std::si
     return bounds;
 }
 
-// Runs task(0) .. task(count - 1), task 0 on the calling thread and each other on its own.
-template <class Task> void run_in_threads(std::size_t count, Task&& task) {
-    std::vector<std::thread> others;
-    others.reserve(count > 0 ? count - 1 : 0);
-    try {
-        for (std::size_t t = 1; t < count; ++t) {
-            others.emplace_back([&task, t] { task(t); });
-        }
-    } catch (...) { // could not start a thread: finish the started ones, then report
-        for (std::thread& w : others) {
-            w.join();
-        }
-        throw;
-    }
-    if (count > 0) {
-        task(0);
-    }
-    for (std::thread& w : others) {
-        w.join();
-    }
-}
+using detail::run_in_threads; // detail/parallel.hpp
 
 } // namespace
 
