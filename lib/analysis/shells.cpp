@@ -1,11 +1,10 @@
 // compute_neighbors at several cutoffs: one search at the largest, then a stable counting sort
-// of its pairs by shell (the index of the first cutoff above d). Shell membership uses the
-// stored d = sqrt(d_sq), and the search's own test at cutoff r is exactly sqrt(d_sq) < r
-// (detail::strict_threshold_sq), so the prefix up to shell k is what a search at cutoffs[k]
-// stores.
+// of its pairs by shell (the index of the first cutoff above d; nothing to sort for one cutoff).
+// Shell membership uses the stored d = sqrt(d_sq), and the search's own test at cutoff r is exactly
+// sqrt(d_sq) < r (detail::strict_threshold_sq), so the prefix up to shell k is what a search at
+// cutoffs[k] stores.
 #include "tricell/analysis/shells.hpp"
 
-#include <algorithm>
 #include <cmath>
 
 #include "detail/list_writer.hpp"
@@ -50,29 +49,38 @@ ShellNeighborList compute_neighbors(const Box& box, PointsView positions,
     NeighborList& list = out.pairs;
     const PairArray<double>& d = list.distances();
     const std::size_t pairs = list.size();
-    std::vector<std::uint32_t> shell(pairs);
+    // The shell of a pair: the first cutoff above d (a few cutoffs: a linear scan is fastest).
+    const std::size_t last = cutoffs.size() - 1;
+    const auto shell_of = [&](std::size_t p) {
+        std::size_t k = 0;
+        while (k < last && d[p] >= cutoffs[k]) {
+            ++k;
+        }
+        return k;
+    };
     out.offsets.assign(cutoffs.size() + 1, 0);
     for (std::size_t p = 0; p < pairs; ++p) {
-        shell[p] =
-            std::uint32_t(std::upper_bound(cutoffs.begin(), cutoffs.end(), d[p]) - cutoffs.begin());
-        ++out.offsets[shell[p] + 1];
+        ++out.offsets[shell_of(p) + 1];
     }
     for (std::size_t k = 1; k < out.offsets.size(); ++k) {
         out.offsets[k] += out.offsets[k - 1];
     }
-    std::vector<std::size_t> order(pairs);
-    std::vector<std::size_t> next(out.offsets.begin(), out.offsets.end() - 1);
-    for (std::size_t p = 0; p < pairs; ++p) {
-        order[next[shell[p]]++] = p;
-    }
     using W = detail::ListWriter;
-    detail::gather(W::i(list), order, 1);
-    detail::gather(W::j(list), order, 1);
-    detail::gather(W::shifts(list), order, 3);
-    detail::gather(W::vectors(list), order, 3);
-    if (options.quantities.distances) {
-        detail::gather(W::distances(list), order, 1);
-    } else {
+    if (cutoffs.size() > 1) {
+        std::vector<std::size_t> order(pairs);
+        std::vector<std::size_t> next(out.offsets.begin(), out.offsets.end() - 1);
+        for (std::size_t p = 0; p < pairs; ++p) {
+            order[next[shell_of(p)]++] = p;
+        }
+        detail::gather(W::i(list), order, 1);
+        detail::gather(W::j(list), order, 1);
+        detail::gather(W::shifts(list), order, 3);
+        detail::gather(W::vectors(list), order, 3);
+        if (options.quantities.distances) {
+            detail::gather(W::distances(list), order, 1);
+        }
+    }
+    if (!options.quantities.distances) {
         W::distances(list).clear();
     }
     W::offsets(list).clear();
