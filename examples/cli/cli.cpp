@@ -1,4 +1,5 @@
 #include "cli.hpp"
+#include "text.hpp"
 
 #include <cerrno>
 #include <cmath>
@@ -101,9 +102,8 @@ io::Format input_format(const Arguments& arguments, const std::string& name) {
 }
 
 std::string exact(double value) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.17g", value);
-    return text;
+    char text[max_real_chars];
+    return std::string(text, write_real(text, value));
 }
 
 std::string brief(double value) {
@@ -152,8 +152,8 @@ Output::~Output() {
     }
 }
 
-void Output::write(const std::string& text) {
-    std::fwrite(text.data(), 1, text.size(), stream_);
+void Output::write(const char* text, std::size_t size) {
+    std::fwrite(text, 1, size, stream_);
 }
 
 void Output::commit() {
@@ -201,6 +201,23 @@ bool take_max_pairs(Arguments& arguments, std::size_t& max_pairs) {
                        arguments.value() + "'");
     }
     max_pairs = std::size_t(n);
+    return true;
+}
+
+bool take_format(Arguments& arguments, TableFormat& format) {
+    if (!arguments.option("--format")) {
+        return false;
+    }
+    const std::string& name = arguments.value();
+    if (name == "tsv") {
+        format = TableFormat::tsv;
+    } else if (name == "csv") {
+        format = TableFormat::csv;
+    } else if (name == "json") {
+        format = TableFormat::json;
+    } else {
+        arguments.fail("--format must be tsv, csv or json, got '" + name + "'");
+    }
     return true;
 }
 

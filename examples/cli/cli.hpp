@@ -60,10 +60,15 @@ bool take_input(Arguments& arguments, io::ReadOptions& read_options, std::string
 /// --max-pairs N (a whole number, 0 = no limit): consumes it into max_pairs and says whether
 /// it did. The library refuses a larger list before allocating it.
 bool take_max_pairs(Arguments& arguments, std::size_t& max_pairs);
+/// The text formats of the tables (--format).
+enum class TableFormat { tsv, csv, json };
+/// --format tsv|csv|json: consumes it into format and says whether it did.
+bool take_format(Arguments& arguments, TableFormat& format);
+
 /// UsageError "missing FILE" when no FILE was given.
 void require_file(const Arguments& arguments, const std::string& file);
 
-/// %.17g: reads back as the same double.
+/// The shortest text that reads back as the same double (write_real in text.hpp).
 std::string exact(double value);
 /// %.10g: for people.
 std::string brief(double value);
@@ -79,7 +84,8 @@ class Output {
     Output& operator=(const Output&) = delete;
 
     std::FILE* stream() const { return stream_; }
-    void write(const std::string& text);
+    void write(const std::string& text) { write(text.data(), text.size()); }
+    void write(const char* text, std::size_t size);
     /// Flushes and, for a file, closes and renames it into place. Throws std::runtime_error.
     void commit();
 

@@ -31,8 +31,23 @@ Run 'tricell COMMAND --help' for the options of a command.
 Exit status: 0 on success, 1 for a rejected input or value, 2 for a malformed command line.
 )";
 
+// The library names its own fields ("raise NeighborOptions::max_pairs to allow it"); a
+// command-line user sets --max-pairs instead, so the message says that.
+std::string in_command_words(std::string text) {
+    const auto replace = [&](const std::string& from, const std::string& to) {
+        for (std::size_t at = text.find(from); at != std::string::npos;
+             at = text.find(from, at + to.size())) {
+            text.replace(at, from.size(), to);
+        }
+    };
+    replace("raise NeighborOptions::max_pairs to allow it",
+            "raise --max-pairs to allow it (0 = no limit)");
+    replace("max_pairs = ", "--max-pairs ");
+    return text;
+}
+
 void one_line(const char* message) {
-    std::string text = message;
+    std::string text = in_command_words(message);
     for (char& c : text) {
         if (c == '\n' || c == '\r') {
             c = ' ';

@@ -1,11 +1,13 @@
 // tricell neighbors: the neighbour list of a structure file, as TSV, CSV or JSON.
 #include <cstdio>
-#include <optional>
 #include <string>
 
 #include <tricell/neighbor_list.hpp>
 
 #include "cli.hpp"
+#include "pair_table.hpp"
+#include "progress.hpp"
+#include "text.hpp"
 
 namespace tricell::cli {
 
@@ -13,7 +15,8 @@ namespace {
 
 const char* const help =
     R"(usage: tricell neighbors FILE --cutoff R [--half] [--sorted] [--format tsv|csv|json]
-                         [--output PATH] [--max-pairs N] [--input-format cif|xyz|poscar]
+                         [--output PATH] [--max-pairs N] [--quiet]
+                         [--input-format cif|xyz|poscar]
 
 Lists every pair (i, j, S) of atoms closer than R: D = x_j - x_i + H S with |D| < R, where x
 are the positions in the order the file gives them (for a CIF, the symmetry-expanded unit
@@ -29,94 +32,16 @@ Options:
   --output PATH       write to PATH, completely or not at all, instead of standard output
   --max-pairs N       refuse lists of more than N pairs before allocating them (default
                       500000000, about 14 GB; 0 = no limit)
+  --quiet             no progress on stderr (shown only when stderr is a terminal)
   --input-format F    cif, xyz or poscar, instead of the guess from the file name
   -h, --help          this help
 
 Output: tsv prints a first line '# i j Sa Sb Sc d Dx Dy Dz' and then one tab-separated line per
 pair; csv prints the header 'i,j,Sa,Sb,Sc,d,Dx,Dy,Dz' and comma-separated lines; json prints
 one object {"file", "atoms", "cutoff", "half", "pairs", "i", "j", "S", "d", "D"} with one array
-per column (S and D as arrays of triples). Reals have 17 significant digits and read back
-exactly.
+per column (S and D as arrays of triples). Reals are written in the shortest form that reads
+back as the same double (at most 17 significant digits).
 )";
-
-enum class TableFormat { tsv, csv, json };
-
-std::string json_string(const std::string& text) {
-    std::string out = "\"";
-    for (char c : text) {
-        if (c == '"' || c == '\\') {
-            out += '\\';
-            out += c;
-        } else if (static_cast<unsigned char>(c) < 0x20) {
-            char escaped[8];
-            std::snprintf(escaped, sizeof escaped, "\\u%04x", c);
-            out += escaped;
-        } else {
-            out += c;
-        }
-    }
-    return out + "\"";
-}
-
-void write_table(Output& out, const NeighborList& list, char separator, bool comment_header) {
-    const char s = separator;
-    std::string buffer =
-        comment_header ? "# i j Sa Sb Sc d Dx Dy Dz\n" : "i,j,Sa,Sb,Sc,d,Dx,Dy,Dz\n";
-    char line[256];
-    for (std::size_t k = 0; k < list.size(); ++k) {
-        const Shift shift = list.shift(k);
-        const Eigen::Vector3d d = list.vector(k);
-        std::snprintf(line, sizeof line, "%u%c%u%c%d%c%d%c%d%c%.17g%c%.17g%c%.17g%c%.17g\n",
-                      list.i()[k], s, list.j()[k], s, shift[0], s, shift[1], s, shift[2], s,
-                      list.distances()[k], s, d[0], s, d[1], s, d[2]);
-        buffer += line;
-        if (buffer.size() > (1U << 16)) {
-            out.write(buffer);
-            buffer.clear();
-        }
-    }
-    out.write(buffer);
-}
-
-void write_json(Output& out, const NeighborList& list, const std::string& file, std::size_t atoms,
-                const NeighborOptions& options) {
-    std::string buffer = "{\n  \"file\": " + json_string(file) +
-                         ",\n  \"atoms\": " + std::to_string(atoms) +
-                         ",\n  \"cutoff\": " + exact(options.cutoff) +
-                         ",\n  \"half\": " + (options.half ? "true" : "false") +
-                         ",\n  \"pairs\": " + std::to_string(list.size());
-    const auto flush = [&] {
-        if (buffer.size() > (1U << 16)) {
-            out.write(buffer);
-            buffer.clear();
-        }
-    };
-    const auto array = [&](const char* key, auto&& item) {
-        buffer += ",\n  \"";
-        buffer += key;
-        buffer += "\": [";
-        for (std::size_t k = 0; k < list.size(); ++k) {
-            buffer += k == 0 ? "" : ", ";
-            buffer += item(k);
-            flush();
-        }
-        buffer += "]";
-    };
-    array("i", [&](std::size_t k) { return std::to_string(list.i()[k]); });
-    array("j", [&](std::size_t k) { return std::to_string(list.j()[k]); });
-    array("S", [&](std::size_t k) {
-        const Shift shift = list.shift(k);
-        return "[" + std::to_string(shift[0]) + ", " + std::to_string(shift[1]) + ", " +
-               std::to_string(shift[2]) + "]";
-    });
-    array("d", [&](std::size_t k) { return exact(list.distances()[k]); });
-    array("D", [&](std::size_t k) {
-        const Eigen::Vector3d d = list.vector(k);
-        return "[" + exact(d[0]) + ", " + exact(d[1]) + ", " + exact(d[2]) + "]";
-    });
-    buffer += "\n}\n";
-    out.write(buffer);
-}
 
 } // namespace
 
@@ -125,6 +50,7 @@ int run_neighbors(const std::vector<std::string>& args) {
     std::string file;
     std::string output;
     bool have_cutoff = false;
+    bool quiet = false;
     TableFormat format = TableFormat::tsv;
     io::ReadOptions read_options;
     NeighborOptions options;
@@ -143,17 +69,9 @@ int run_neighbors(const std::vector<std::string>& args) {
             options.half = true;
         } else if (arguments.flag("--sorted")) {
             options.sorted = true;
-        } else if (arguments.option("--format")) {
-            const std::string& name = arguments.value();
-            if (name == "tsv") {
-                format = TableFormat::tsv;
-            } else if (name == "csv") {
-                format = TableFormat::csv;
-            } else if (name == "json") {
-                format = TableFormat::json;
-            } else {
-                arguments.fail("--format must be tsv, csv or json, got '" + name + "'");
-            }
+        } else if (take_format(arguments, format)) {
+        } else if (arguments.flag("--quiet")) {
+            quiet = true;
         } else if (arguments.option("--output")) {
             output = arguments.value();
         } else if (take_max_pairs(arguments, options.max_pairs)) {
@@ -170,17 +88,11 @@ int run_neighbors(const std::vector<std::string>& args) {
     const NeighborList list = compute_neighbors(structure.box, structure.positions, options);
 
     Output out(output);
-    switch (format) {
-    case TableFormat::tsv:
-        write_table(out, list, '\t', true);
-        break;
-    case TableFormat::csv:
-        write_table(out, list, ',', false);
-        break;
-    case TableFormat::json:
-        write_json(out, list, file, structure.size(), options);
-        break;
-    }
+    TextSink sink(out);
+    PairTableHeader header{file, structure.size(), options.cutoff, options.half};
+    // Progress only when the table goes to a file: on a terminal it would mix with the rows.
+    write_pairs(sink, list, format, header, !quiet && !(output.empty() && stdout_is_terminal()));
+    sink.flush();
     out.commit();
     return 0;
 }
