@@ -77,6 +77,15 @@ double Arguments::real() const {
     return x;
 }
 
+std::size_t Arguments::whole(std::size_t low, std::size_t high) const {
+    const double x = real();
+    if (!(x >= double(low) && x <= double(high)) || x != std::floor(x)) {
+        fail(matched_ + " must be a whole number in [" + std::to_string(low) + ", " +
+             std::to_string(high) + "], got '" + value_ + "'");
+    }
+    return std::size_t(x);
+}
+
 bool Arguments::positional() const {
     const std::string& arg = current();
     return options_ended_ || arg.empty() || arg[0] != '-' || arg == "-";
@@ -218,6 +227,22 @@ bool take_format(Arguments& arguments, TableFormat& format) {
     } else {
         arguments.fail("--format must be tsv, csv or json, got '" + name + "'");
     }
+    return true;
+}
+
+bool take_threads(Arguments& arguments, int& threads) {
+    if (!arguments.option("--threads")) {
+        return false;
+    }
+    threads = int(arguments.whole(0, 1024));
+    return true;
+}
+
+bool take_quiet(Arguments& arguments, bool& quiet) {
+    if (!arguments.flag("--quiet")) {
+        return false;
+    }
+    quiet = true;
     return true;
 }
 

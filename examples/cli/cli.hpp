@@ -33,6 +33,9 @@ class Arguments {
     const std::string& value() const { return value_; }
     /// Value of the option just matched, as a finite real.
     double real() const;
+    /// Value of the option just matched, as a whole number in [low, high] (UsageError
+    /// "--name must be a whole number in [low, high], got 'value'" otherwise).
+    std::size_t whole(std::size_t low, std::size_t high) const;
     /// The current argument is a positional one (not starting with '-', or after "--").
     bool positional() const;
     const std::string& current() const { return args_[index_]; }
@@ -64,6 +67,11 @@ bool take_max_pairs(Arguments& arguments, std::size_t& max_pairs);
 enum class TableFormat { tsv, csv, json };
 /// --format tsv|csv|json: consumes it into format and says whether it did.
 bool take_format(Arguments& arguments, TableFormat& format);
+
+/// --threads T (0 = all hardware threads, at most 1024): consumes it and says whether it did.
+bool take_threads(Arguments& arguments, int& threads);
+/// --quiet: consumes it into quiet and says whether it did.
+bool take_quiet(Arguments& arguments, bool& quiet);
 
 /// UsageError "missing FILE" when no FILE was given.
 void require_file(const Arguments& arguments, const std::string& file);
@@ -104,5 +112,6 @@ int run_neighbors(const std::vector<std::string>& args);
 int run_info(const std::vector<std::string>& args);
 int run_coordination(const std::vector<std::string>& args);
 int run_bench(const std::vector<std::string>& args);
+int run_rdf(const std::vector<std::string>& args);
 
 } // namespace tricell::cli

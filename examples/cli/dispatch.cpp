@@ -20,8 +20,11 @@ const char* const usage = R"(usage: tricell COMMAND FILE [OPTIONS]
 
 Commands:
   neighbors FILE --cutoff R      all pairs closer than R, with image shifts and vectors
+  neighbors FILE --nearest K     the K nearest neighbours of every atom
   info FILE                      formula, cell, volume, widths, space group, Niggli cell
-  coordination FILE --cutoff R   coordination number and nearest neighbour of every atom
+  coordination FILE --cutoff R   coordination number and bond lengths of every atom, or per
+                                 element (--summary), with a histogram plot (--plot)
+  rdf FILE --rmax R --bins N     g(r) and n(r), total and partial, over every frame of FILE
   bench FILE --cutoff R          time the neighbour list (pairs per second, peak memory)
 
 FILE is a CIF (*.cif), an extended XYZ (*.xyz, *.extxyz) or a VASP 5 POSCAR (POSCAR, CONTCAR,
@@ -88,8 +91,11 @@ int run(const std::vector<std::string>& args) {
         if (command == "bench") {
             return run_bench(rest);
         }
+        if (command == "rdf") {
+            return run_rdf(rest);
+        }
         throw UsageError("unknown command '" + command +
-                         "', expected neighbors, info, coordination or bench (see "
+                         "', expected neighbors, info, coordination, rdf or bench (see "
                          "tricell --help)");
     } catch (const UsageError& e) {
         one_line(e.what());

@@ -1,7 +1,9 @@
-// tricell neighbors: the neighbour list of a structure file, as TSV, CSV or JSON.
+// tricell neighbors: the neighbour list of a structure file (all pairs within a cutoff, or the
+// k nearest of every atom), as TSV, CSV or JSON.
 #include <cstdio>
 #include <string>
 
+#include <tricell/analysis/nearest.hpp>
 #include <tricell/neighbor_list.hpp>
 
 #include "cli.hpp"
@@ -15,8 +17,10 @@ namespace {
 
 const char* const help =
     R"(usage: tricell neighbors FILE --cutoff R [--half] [--sorted] [--format tsv|csv|json]
-                         [--output PATH] [--max-pairs N] [--quiet]
+                         [--output PATH] [--max-pairs N] [--threads T] [--quiet]
                          [--input-format cif|xyz|poscar]
+       tricell neighbors FILE --nearest K [--format tsv|csv|json] [--output PATH]
+                         [--threads T] [--quiet] [--input-format cif|xyz|poscar]
 
 Lists every pair (i, j, S) of atoms closer than R: D = x_j - x_i + H S with |D| < R, where x
 are the positions in the order the file gives them (for a CIF, the symmetry-expanded unit
@@ -24,14 +28,21 @@ cell), H has the lattice vectors a, b, c as columns and S = (Sa, Sb, Sc) is the 
 (0 along non-periodic axes). Indices are 0-based. An atom paired with its own periodic image is
 listed; an atom with itself is not.
 
+With --nearest K instead of --cutoff, lists the K nearest (j, S) of every atom, periodic images
+included (K may exceed the number of atoms), nearest first, ties broken by j and then S, so
+the output is the same on every run.
+
 Options:
-  --cutoff R          cutoff in the length unit of the file (Angstrom), R > 0 (required)
+  --cutoff R          cutoff in the length unit of the file (Angstrom), R > 0
+  --nearest K         the K nearest neighbours of every atom instead of a cutoff, K >= 1
   --half              each pair once, oriented i < j (for i == j: S lexicographically positive)
   --sorted            sort by i, then j, then Sa, Sb, Sc (otherwise the order is unspecified)
   --format F          tsv (default), csv or json
   --output PATH       write to PATH, completely or not at all, instead of standard output
   --max-pairs N       refuse lists of more than N pairs before allocating them (default
                       500000000, about 14 GB; 0 = no limit)
+  --threads T         threads of the search, 0 = all hardware threads (default 1); the output
+                      is the same for any T
   --quiet             no progress on stderr (shown only when stderr is a terminal)
   --input-format F    cif, xyz or poscar, instead of the guess from the file name
   -h, --help          this help
@@ -39,7 +50,8 @@ Options:
 Output: tsv prints a first line '# i j Sa Sb Sc d Dx Dy Dz' and then one tab-separated line per
 pair; csv prints the header 'i,j,Sa,Sb,Sc,d,Dx,Dy,Dz' and comma-separated lines; json prints
 one object {"file", "atoms", "cutoff", "half", "pairs", "i", "j", "S", "d", "D"} with one array
-per column (S and D as arrays of triples). Reals are written in the shortest form that reads
+per column (S and D as arrays of triples). With --nearest the columns are i j Sa Sb Sc d (K
+rows per atom, atom by atom) and json has "k" instead of "cutoff" and "half". Reals are written in the shortest form that reads
 back as the same double (at most 17 significant digits).
 )";
 
@@ -50,6 +62,7 @@ int run_neighbors(const std::vector<std::string>& args) {
     std::string file;
     std::string output;
     bool have_cutoff = false;
+    std::size_t nearest = 0;
     bool quiet = false;
     TableFormat format = TableFormat::tsv;
     io::ReadOptions read_options;
@@ -65,33 +78,52 @@ int run_neighbors(const std::vector<std::string>& args) {
         if (arguments.option("--cutoff")) {
             options.cutoff = arguments.real();
             have_cutoff = true;
+        } else if (arguments.option("--nearest")) {
+            nearest = arguments.whole(1, std::size_t(1) << 31);
         } else if (arguments.flag("--half")) {
             options.half = true;
         } else if (arguments.flag("--sorted")) {
             options.sorted = true;
         } else if (take_format(arguments, format)) {
-        } else if (arguments.flag("--quiet")) {
-            quiet = true;
+        } else if (take_quiet(arguments, quiet)) {
         } else if (arguments.option("--output")) {
             output = arguments.value();
         } else if (take_max_pairs(arguments, options.max_pairs)) {
+        } else if (take_threads(arguments, options.threads)) {
         } else if (!take_input(arguments, read_options, file)) {
             arguments.unknown();
         }
     }
     require_file(arguments, file);
-    if (!have_cutoff) {
-        arguments.fail("missing --cutoff R");
+    if (nearest > 0) {
+        if (have_cutoff || options.half || options.sorted) {
+            arguments.fail("--nearest takes no --cutoff, --half or --sorted");
+        }
+    } else if (!have_cutoff) {
+        arguments.fail("missing --cutoff R or --nearest K");
+    }
+    // Progress only when the table goes to a file: on a terminal it would mix with the rows.
+    const bool show_progress = !quiet && !(output.empty() && stdout_is_terminal());
+    const io::Structure structure = io::read_structure(file, read_options);
+    if (nearest > 0) {
+        NearestOptions nearest_options;
+        nearest_options.threads = options.threads;
+        const NearestNeighbors result =
+            nearest_neighbors(structure.box, structure.positions, nearest, nearest_options);
+        Output out(output);
+        TextSink sink(out);
+        write_nearest(sink, result, format, file, show_progress);
+        sink.flush();
+        out.commit();
+        return 0;
     }
     // compute_neighbors() validates the options (cutoff > 0) before any work.
-    const io::Structure structure = io::read_structure(file, read_options);
     const NeighborList list = compute_neighbors(structure.box, structure.positions, options);
 
     Output out(output);
     TextSink sink(out);
     PairTableHeader header{file, structure.size(), options.cutoff, options.half};
-    // Progress only when the table goes to a file: on a terminal it would mix with the rows.
-    write_pairs(sink, list, format, header, !quiet && !(output.empty() && stdout_is_terminal()));
+    write_pairs(sink, list, format, header, show_progress);
     sink.flush();
     out.commit();
     return 0;

@@ -1,28 +1,9 @@
 #include "pair_table.hpp"
 
-#include <cstdio>
-
 #include "progress.hpp"
 #include "text.hpp"
 
 namespace tricell::cli {
-
-std::string json_string(const std::string& text) {
-    std::string out = "\"";
-    for (char c : text) {
-        if (c == '"' || c == '\\') {
-            out += '\\';
-            out += c;
-        } else if (static_cast<unsigned char>(c) < 0x20) {
-            char escaped[8];
-            std::snprintf(escaped, sizeof escaped, "\\u%04x", c);
-            out += escaped;
-        } else {
-            out += c;
-        }
-    }
-    return out + "\"";
-}
 
 namespace {
 
@@ -66,6 +47,20 @@ void json_array(TextSink& sink, const char* key, std::size_t size, Item&& item) 
     sink.put(']');
 }
 
+void put_number(TextSink& sink, std::int32_t x) { sink.put_integer(x); }
+void put_number(TextSink& sink, double x) { sink.put_real(x); }
+
+// "[a, b, c]" of three numbers.
+template <class T> void json_triple(TextSink& sink, const T* values) {
+    sink.put('[');
+    put_number(sink, values[0]);
+    sink.put(", ");
+    put_number(sink, values[1]);
+    sink.put(", ");
+    put_number(sink, values[2]);
+    sink.put(']');
+}
+
 void write_json(TextSink& sink, const NeighborList& list, const PairTableHeader& header,
                 Progress& progress) {
     sink.put("{\n  \"file\": ");
@@ -79,17 +74,6 @@ void write_json(TextSink& sink, const NeighborList& list, const PairTableHeader&
     sink.put(",\n  \"pairs\": ");
     sink.put_integer(list.size());
     const std::size_t n = list.size();
-    const auto triple = [&](auto* values, std::size_t k, auto put) {
-        sink.put('[');
-        put(values[3 * k]);
-        sink.put(", ");
-        put(values[3 * k + 1]);
-        sink.put(", ");
-        put(values[3 * k + 2]);
-        sink.put(']');
-    };
-    const auto integer = [&](auto x) { sink.put_integer(x); };
-    const auto real = [&](double x) { sink.put_real(x); };
     json_array(sink, "i", n, [&](std::size_t k) {
         sink.put_integer(list.i()[k]);
         progress.update(k);
@@ -99,7 +83,7 @@ void write_json(TextSink& sink, const NeighborList& list, const PairTableHeader&
         progress.update(n + k);
     });
     json_array(sink, "S", n, [&](std::size_t k) {
-        triple(list.shifts().data(), k, integer);
+        json_triple(sink, list.shifts().data() + 3 * k);
         progress.update(2 * n + k);
     });
     json_array(sink, "d", n, [&](std::size_t k) {
@@ -107,13 +91,74 @@ void write_json(TextSink& sink, const NeighborList& list, const PairTableHeader&
         progress.update(3 * n + k);
     });
     json_array(sink, "D", n, [&](std::size_t k) {
-        triple(list.vectors().data(), k, real);
+        json_triple(sink, list.vectors().data() + 3 * k);
         progress.update(4 * n + k);
     });
     sink.put("\n}\n");
 }
 
+void write_nearest_rows(TextSink& sink, const NearestNeighbors& nearest, char separator,
+                        Progress& progress) {
+    for (std::size_t e = 0; e < nearest.j.size(); ++e) {
+        sink.put_integer(e / nearest.k);
+        sink.put(separator);
+        sink.put_integer(nearest.j[e]);
+        for (std::size_t c = 0; c < 3; ++c) {
+            sink.put(separator);
+            sink.put_integer(nearest.shifts[3 * e + c]);
+        }
+        sink.put(separator);
+        sink.put_real(nearest.distances[e]);
+        sink.put('\n');
+        progress.update(e);
+    }
+}
+
 } // namespace
+
+void write_nearest(TextSink& sink, const NearestNeighbors& nearest, TableFormat format,
+                   const std::string& file, bool show_progress) {
+    const std::size_t n = nearest.j.size();
+    Progress progress("writing neighbours", format == TableFormat::json ? 4 * n : n,
+                      show_progress);
+    switch (format) {
+    case TableFormat::tsv:
+        sink.put("# i j Sa Sb Sc d\n");
+        write_nearest_rows(sink, nearest, '\t', progress);
+        break;
+    case TableFormat::csv:
+        sink.put("i,j,Sa,Sb,Sc,d\n");
+        write_nearest_rows(sink, nearest, ',', progress);
+        break;
+    case TableFormat::json:
+        sink.put("{\n  \"file\": ");
+        sink.put(json_string(file));
+        sink.put(",\n  \"atoms\": ");
+        sink.put_integer(nearest.size());
+        sink.put(",\n  \"k\": ");
+        sink.put_integer(nearest.k);
+        sink.put(",\n  \"pairs\": ");
+        sink.put_integer(n);
+        json_array(sink, "i", n, [&](std::size_t e) {
+            sink.put_integer(e / nearest.k);
+            progress.update(e);
+        });
+        json_array(sink, "j", n, [&](std::size_t e) {
+            sink.put_integer(nearest.j[e]);
+            progress.update(n + e);
+        });
+        json_array(sink, "S", n, [&](std::size_t e) {
+            json_triple(sink, nearest.shifts.data() + 3 * e);
+            progress.update(2 * n + e);
+        });
+        json_array(sink, "d", n, [&](std::size_t e) {
+            sink.put_real(nearest.distances[e]);
+            progress.update(3 * n + e);
+        });
+        sink.put("\n}\n");
+        break;
+    }
+}
 
 void write_pairs(TextSink& sink, const NeighborList& list, TableFormat format,
                  const PairTableHeader& header, bool show_progress) {

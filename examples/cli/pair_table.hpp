@@ -1,11 +1,13 @@
 // The neighbour list as text (tricell neighbors, CONTRACT §3): TSV with a '# i j Sa Sb Sc d Dx
 // Dy Dz' header line, CSV with an 'i,j,Sa,Sb,Sc,d,Dx,Dy,Dz' header, or one JSON object with an
-// array per column. Reals are the shortest text that reads back exactly (text.hpp).
+// array per column; the k nearest neighbours of every atom likewise, with the columns
+// i j Sa Sb Sc d. Reals are the shortest text that reads back exactly (text.hpp).
 #pragma once
 
 #include <cstddef>
 #include <string>
 
+#include <tricell/analysis/nearest.hpp>
 #include <tricell/neighbor_list.hpp>
 
 #include "cli.hpp"
@@ -27,7 +29,9 @@ struct PairTableHeader {
 void write_pairs(TextSink& sink, const NeighborList& list, TableFormat format,
                  const PairTableHeader& header, bool progress);
 
-/// A JSON string literal of `text` (quotes, backslashes and control characters escaped).
-std::string json_string(const std::string& text);
+/// Writes the k nearest neighbours of every atom in `format` (atom i's rows in order, nearest
+/// first); JSON has "k" instead of "cutoff" and "half".
+void write_nearest(TextSink& sink, const NearestNeighbors& nearest, TableFormat format,
+                   const std::string& file, bool progress);
 
 } // namespace tricell::cli

@@ -1,5 +1,6 @@
 #include "text.hpp"
 
+#include <cstdio>
 #include <cstring>
 
 #include "cli.hpp"
@@ -20,6 +21,23 @@ void TextSink::put(std::string_view text) {
     }
     std::memcpy(end_, text.data(), text.size());
     end_ += text.size();
+}
+
+std::string json_string(const std::string& text) {
+    std::string out = "\"";
+    for (char c : text) {
+        if (c == '"' || c == '\\') {
+            out += '\\';
+            out += c;
+        } else if (static_cast<unsigned char>(c) < 0x20) {
+            char escaped[8];
+            std::snprintf(escaped, sizeof escaped, "\\u%04x", c);
+            out += escaped;
+        } else {
+            out += c;
+        }
+    }
+    return out + "\"";
 }
 
 void TextSink::flush() {

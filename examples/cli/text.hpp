@@ -1,12 +1,15 @@
 // Fast exact text for the command's tables. Reals are written in the shortest form that reads
-// back to the same double (std::to_chars without a precision: Ryu-style shortest round trip,
-// "0.1" rather than "0.10000000000000001"), integers with std::to_chars, all into one large
+// back to the same double (std::to_chars in general format without a precision: the fewest
+// significant digits that round-trip, at most 17, "0.1" rather than "0.10000000000000001", with
+// printf %g's choice of fixed or exponent notation; the plain shortest format would print
+// 5e18 with all of its 19 integer digits), integers with std::to_chars, all into one large
 // buffer that is reused and handed to the Output in big blocks, so a table of millions of rows
 // costs a few fwrite calls and no allocation or printf parsing per number.
 #pragma once
 
 #include <charconv>
 #include <cstddef>
+#include <string>
 #include <string_view>
 #include <system_error>
 #include <vector>
@@ -21,8 +24,11 @@ constexpr std::size_t max_real_chars = 32;
 /// Writes `value` at `at` in the shortest form that reads back exactly (nan, inf and -inf as
 /// such) and returns the end. `at` must have max_real_chars of room.
 inline char* write_real(char* at, double value) {
-    return std::to_chars(at, at + max_real_chars, value).ptr;
+    return std::to_chars(at, at + max_real_chars, value, std::chars_format::general).ptr;
 }
+
+/// A JSON string literal of `text` (quotes, backslashes and control characters escaped).
+std::string json_string(const std::string& text);
 
 /// A text buffer in front of an Output: put() appends, and the buffer goes to the Output
 /// whenever it is nearly full and on flush(). Call flush() before Output::commit().
