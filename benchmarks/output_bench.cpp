@@ -2,7 +2,7 @@
 // std::to_chars into a reused buffer) against the writer it replaced (snprintf "%.17g" per line
 // and one std::string per JSON item, kept here verbatim as the baseline), both writing a file
 // through the command's all-or-nothing Output, interleaved in the same run, median of the
-// repeats. A plain timing program, not a test:
+// repeats, wall clock and the process's CPU time. A plain timing program, not a test:
 //
 //   taskset -c 0 build/benchmarks/output_bench [--repeat K] [--dir DIR] [FILE CUTOFF]
 //
@@ -15,6 +15,8 @@
 #include <random>
 #include <string>
 #include <vector>
+
+#include <time.h>
 
 #include <tricell/io/io.hpp>
 #include <tricell/neighbor_list.hpp>
@@ -100,8 +102,15 @@ struct Writer {
     const char* name;
     bool legacy;
     tricell::cli::TableFormat format;
-    std::vector<double> seconds;
+    std::vector<double> seconds;     // wall clock
+    std::vector<double> cpu_seconds; // this process, user + system (less noisy on a busy machine)
 };
+
+double cpu_now() {
+    timespec t{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
 
 double median(std::vector<double> x) {
     std::sort(x.begin(), x.end());
@@ -148,17 +157,18 @@ int main(int argc, char** argv) {
     const tricell::cli::PairTableHeader header{"x", x.size(), options.cutoff, false};
     using tricell::cli::TableFormat;
     std::vector<Writer> writers = {
-        {"tsv snprintf (before)", true, TableFormat::tsv, {}},
-        {"tsv to_chars", false, TableFormat::tsv, {}},
-        {"csv snprintf (before)", true, TableFormat::csv, {}},
-        {"csv to_chars", false, TableFormat::csv, {}},
-        {"json std::string (before)", true, TableFormat::json, {}},
-        {"json to_chars", false, TableFormat::json, {}},
+        {"tsv snprintf (before)", true, TableFormat::tsv, {}, {}},
+        {"tsv to_chars", false, TableFormat::tsv, {}, {}},
+        {"csv snprintf (before)", true, TableFormat::csv, {}, {}},
+        {"csv to_chars", false, TableFormat::csv, {}, {}},
+        {"json std::string (before)", true, TableFormat::json, {}, {}},
+        {"json to_chars", false, TableFormat::json, {}, {}},
     };
     const std::string path = dir + "/tricell-output-bench.txt";
     for (int r = 0; r < repeat; ++r) {
         for (Writer& w : writers) {
             const auto start = std::chrono::steady_clock::now();
+            const double cpu_start = cpu_now();
             Output out(path);
             if (!w.legacy) {
                 tricell::cli::TextSink sink(out);
@@ -171,6 +181,7 @@ int main(int argc, char** argv) {
                              w.format == TableFormat::tsv);
             }
             out.commit();
+            w.cpu_seconds.push_back(cpu_now() - cpu_start);
             w.seconds.push_back(
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
         }
@@ -178,10 +189,12 @@ int main(int argc, char** argv) {
     std::remove(path.c_str());
     std::printf("%zu atoms, %zu pairs, cutoff %g, %d repeats, into %s\n", x.size(), list.size(),
                 options.cutoff, repeat, path.c_str());
-    std::printf("%-28s %10s %14s\n", "writer", "median s", "M pairs/s");
+    std::printf("%-28s %10s %10s %14s %14s\n", "writer", "wall s", "cpu s", "M pairs/s",
+                "M pairs/cpu s");
     for (const Writer& w : writers) {
-        const double t = median(w.seconds);
-        std::printf("%-28s %10.3f %14.2f\n", w.name, t, double(list.size()) / t / 1e6);
+        const double t = median(w.seconds), c = median(w.cpu_seconds);
+        std::printf("%-28s %10.3f %10.3f %14.2f %14.2f\n", w.name, t, c,
+                    double(list.size()) / t / 1e6, double(list.size()) / c / 1e6);
     }
     return 0;
 }
