@@ -43,7 +43,9 @@ struct TRICELL_API RdfOptions {
     double rmax = 0;
     /// Number of bins of width rmax / bins over [0, rmax). At least 1, at most max_bins.
     std::size_t bins = 0;
-    /// Threads for the search of each frame (NeighborOptions::threads; 0 means all).
+    /// Threads for the search of each frame (NeighborOptions::threads; 0 means all). On one
+    /// thread pairs are streamed and nothing is stored; with more, each frame's half list is
+    /// stored first (i, j, S, d: 24 bytes per pair). The result is the same either way.
     int threads = 1;
     /// Search backend (never changes the result).
     SearchBackend backend = SearchBackend::automatic;
@@ -103,7 +105,7 @@ class TRICELL_API Rdf {
     std::vector<double> edges_;
     std::size_t frames_ = 0;
     Sums total_;
-    std::map<std::pair<std::int32_t, std::int32_t>, Sums> partials_; // keys with first <= second
+    std::map<std::pair<std::int32_t, std::int32_t>, Sums> partials_; // (A, B), both orders
 };
 
 } // namespace tricell

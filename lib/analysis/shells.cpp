@@ -1,0 +1,100 @@
+// compute_neighbors at several cutoffs: one search at the largest, then a stable counting sort
+// of its pairs by shell (the index of the first cutoff above d). Shell membership uses the
+// stored d = sqrt(d_sq), and the search's own test at cutoff r is exactly sqrt(d_sq) < r
+// (detail::strict_threshold_sq), so the prefix up to shell k is what a search at cutoffs[k]
+// stores.
+#include "tricell/analysis/shells.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "detail/list_writer.hpp"
+#include "tricell/error.hpp"
+
+namespace tricell {
+
+namespace {
+
+// out[k] = in[order[k]] for `width` values per pair.
+template <class T>
+void permute(PairArray<T>& column, const std::vector<std::size_t>& order, std::size_t width) {
+    if (column.empty()) {
+        return;
+    }
+    PairArray<T> sorted(column.size());
+    for (std::size_t k = 0; k < order.size(); ++k) {
+        std::copy_n(column.begin() + std::ptrdiff_t(width * order[k]), width,
+                    sorted.begin() + std::ptrdiff_t(width * k));
+    }
+    column.swap(sorted);
+}
+
+} // namespace
+
+ShellNeighborList compute_neighbors(const Box& box, PointsView positions,
+                                    const std::vector<double>& cutoffs,
+                                    const NeighborOptions& options) {
+    if (cutoffs.empty()) {
+        detail::fail<InvalidArgument>("cutoffs must hold at least one cutoff (got none)");
+    }
+    for (std::size_t k = 0; k < cutoffs.size(); ++k) {
+        if (!(std::isfinite(cutoffs[k]) && cutoffs[k] > 0)) {
+            detail::fail<InvalidArgument>("cutoffs[", k, "] must be finite and > 0 (got ",
+                                          cutoffs[k], ")");
+        }
+        if (k > 0 && !(cutoffs[k] > cutoffs[k - 1])) {
+            detail::fail<InvalidArgument>("cutoffs must increase strictly, but cutoffs[", k,
+                                          "] = ", cutoffs[k], " follows cutoffs[", k - 1,
+                                          "] = ", cutoffs[k - 1]);
+        }
+    }
+    if (options.cutoff != 0) {
+        detail::fail<InvalidArgument>(
+            "NeighborOptions::cutoff must stay 0 when a list of cutoffs is given (got ",
+            options.cutoff, ")");
+    }
+    if (options.variable_cutoff()) {
+        detail::fail<InvalidArgument>("several cutoffs cannot be combined with "
+                                      "NeighborOptions::radii or species_cutoffs");
+    }
+
+    NeighborOptions search = options;
+    search.cutoff = cutoffs.back();
+    search.quantities.distances = true; // the shells need d
+    ShellNeighborList out;
+    out.cutoffs = cutoffs;
+    compute_neighbors(box, positions, search, out.pairs);
+
+    NeighborList& list = out.pairs;
+    const PairArray<double>& d = list.distances();
+    const std::size_t pairs = list.size();
+    std::vector<std::uint32_t> shell(pairs);
+    out.offsets.assign(cutoffs.size() + 1, 0);
+    for (std::size_t p = 0; p < pairs; ++p) {
+        shell[p] =
+            std::uint32_t(std::upper_bound(cutoffs.begin(), cutoffs.end(), d[p]) - cutoffs.begin());
+        ++out.offsets[shell[p] + 1];
+    }
+    for (std::size_t k = 1; k < out.offsets.size(); ++k) {
+        out.offsets[k] += out.offsets[k - 1];
+    }
+    std::vector<std::size_t> order(pairs);
+    std::vector<std::size_t> next(out.offsets.begin(), out.offsets.end() - 1);
+    for (std::size_t p = 0; p < pairs; ++p) {
+        order[next[shell[p]]++] = p;
+    }
+    using W = detail::ListWriter;
+    permute(W::i(list), order, 1);
+    permute(W::j(list), order, 1);
+    permute(W::shifts(list), order, 3);
+    permute(W::vectors(list), order, 3);
+    if (options.quantities.distances) {
+        permute(W::distances(list), order, 1);
+    } else {
+        W::distances(list).clear();
+    }
+    W::offsets(list).clear();
+    return out;
+}
+
+} // namespace tricell
