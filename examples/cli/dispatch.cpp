@@ -34,8 +34,9 @@ Run 'tricell COMMAND --help' for the options of a command.
 Exit status: 0 on success, 1 for a rejected input or value, 2 for a malformed command line.
 )";
 
-// The library names its own fields ("raise NeighborOptions::max_pairs to allow it"); a
-// command-line user sets --max-pairs instead, so the message says that.
+// The library names its own fields ("raise NeighborOptions::max_pairs to allow it",
+// "RdfOptions::rmax must be ..."); a command-line user sets options instead, so the message
+// names them.
 std::string in_command_words(std::string text) {
     const auto replace = [&](const std::string& from, const std::string& to) {
         for (std::size_t at = text.find(from); at != std::string::npos;
@@ -46,6 +47,8 @@ std::string in_command_words(std::string text) {
     replace("raise NeighborOptions::max_pairs to allow it",
             "raise --max-pairs to allow it (0 = no limit)");
     replace("max_pairs = ", "--max-pairs ");
+    replace("RdfOptions::rmax", "--rmax");
+    replace("RdfOptions::bins", "--bins");
     return text;
 }
 

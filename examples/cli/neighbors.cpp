@@ -4,6 +4,7 @@
 #include <string>
 
 #include <tricell/analysis/nearest.hpp>
+#include <tricell/error.hpp>
 #include <tricell/neighbor_list.hpp>
 
 #include "cli.hpp"
@@ -20,7 +21,8 @@ const char* const help =
                          [--output PATH] [--max-pairs N] [--threads T] [--quiet]
                          [--input-format cif|xyz|poscar]
        tricell neighbors FILE --nearest K [--format tsv|csv|json] [--output PATH]
-                         [--threads T] [--quiet] [--input-format cif|xyz|poscar]
+                         [--max-pairs N] [--threads T] [--quiet]
+                         [--input-format cif|xyz|poscar]
 
 Lists every pair (i, j, S) of atoms closer than R: D = x_j - x_i + H S with |D| < R, where x
 are the positions in the order the file gives them (for a CIF, the symmetry-expanded unit
@@ -40,7 +42,8 @@ Options:
   --format F          tsv (default), csv or json
   --output PATH       write to PATH, completely or not at all, instead of standard output
   --max-pairs N       refuse lists of more than N pairs before allocating them (default
-                      500000000, about 14 GB; 0 = no limit)
+                      500000000, about 14 GB; 0 = no limit); with --nearest, refuse K times
+                      the number of atoms above N
   --threads T         threads of the search, 0 = all hardware threads (default 1); the output
                       is the same for any T
   --quiet             no progress on stderr (shown only when stderr is a terminal)
@@ -106,6 +109,13 @@ int run_neighbors(const std::vector<std::string>& args) {
     const bool show_progress = !quiet && !(output.empty() && stdout_is_terminal());
     const io::Structure structure = io::read_structure(file, read_options);
     if (nearest > 0) {
+        const std::size_t atoms = structure.size();
+        if (options.max_pairs != 0 && atoms > 0 && nearest > options.max_pairs / atoms) {
+            throw InvalidArgument("--nearest " + std::to_string(nearest) + " for " +
+                                  std::to_string(atoms) + " atoms lists more than --max-pairs " +
+                                  std::to_string(options.max_pairs) +
+                                  " neighbours; raise --max-pairs to allow it (0 = no limit)");
+        }
         NearestOptions nearest_options;
         nearest_options.threads = options.threads;
         const NearestNeighbors result =

@@ -10,6 +10,7 @@
 #include <tricell/analysis/rdf.hpp>
 #include <tricell/error.hpp>
 #include <tricell/io/trajectory.hpp>
+#include <tricell/neighbor_list.hpp>
 
 #include "cli.hpp"
 #include "pair_table.hpp"
@@ -23,8 +24,8 @@ namespace {
 
 const char* const help =
     R"(usage: tricell rdf FILE --rmax R --bins N [--pair A-B ...] [--plot PATH.svg|PATH.png]
-                   [--format tsv|csv|json] [--output PATH] [--threads T] [--quiet]
-                   [--input-format cif|xyz|poscar]
+                   [--format tsv|csv|json] [--output PATH] [--threads T] [--max-pairs N]
+                   [--quiet] [--input-format cif|xyz|poscar]
 
 The radial distribution function g(r) over every periodic image (R may exceed the cell),
 averaged over every frame of FILE: each frame of a multi-frame extended XYZ trajectory is read
@@ -46,6 +47,9 @@ Options:
   --format F          tsv (default), csv or json
   --output PATH       write to PATH, completely or not at all, instead of standard output
   --threads T         threads of each frame's search, 0 = all hardware threads (default 1)
+  --max-pairs N       refuse a frame whose pairs within R (each pair once) would be more than
+                      N, before searching it (default 500000000; 0 = no limit): the work
+                      grows with the pairs, though none are stored
   --quiet             no progress on stderr (shown only when stderr is a terminal)
   --input-format F    cif, xyz or poscar, instead of the guess from the file name
   -h, --help          this help
@@ -177,6 +181,19 @@ void write_json(TextSink& sink, const std::vector<Column>& columns,
     sink.put(pairs.empty() ? "]\n}\n" : "\n  ]\n}\n");
 }
 
+// Refuses a frame with more than max_pairs pairs within rmax (each pair once) before it is
+// searched, with the estimate NeighborSearch::build() makes from the density.
+void check_pair_limit(const io::Structure& frame, double rmax, std::size_t max_pairs) {
+    if (max_pairs == 0) {
+        return;
+    }
+    NeighborOptions options;
+    options.cutoff = rmax;
+    options.half = true;
+    options.max_pairs = max_pairs;
+    NeighborSearch().build(frame.box, frame.positions, options);
+}
+
 Plot rdf_plot(const std::string& file, const std::vector<Column>& columns, std::size_t frames) {
     Plot plot;
     plot.title = "g(r), " + file + " (" + std::to_string(frames) +
@@ -199,6 +216,7 @@ int run_rdf(const std::vector<std::string>& args) {
     bool have_rmax = false;
     bool have_bins = false;
     bool quiet = false;
+    std::size_t max_pairs = NeighborOptions().max_pairs;
     TableFormat format = TableFormat::tsv;
     std::vector<PairName> pairs;
     io::ReadOptions read_options;
@@ -221,6 +239,7 @@ int run_rdf(const std::vector<std::string>& args) {
         } else if (arguments.option("--output")) {
             output = arguments.value();
         } else if (take_threads(arguments, options.threads)) {
+        } else if (take_max_pairs(arguments, max_pairs)) {
         } else if (take_quiet(arguments, quiet)) {
         } else if (!take_input(arguments, read_options, file)) {
             arguments.unknown();
@@ -240,7 +259,16 @@ int run_rdf(const std::vector<std::string>& args) {
     io::Structure frame;
     Progress progress("frames", 0, !quiet);
     while (reader.next(frame)) {
-        rdf.add_frame(frame.box, frame.positions, numbers.of(frame.species));
+        // The library's message says what is wrong with a frame; say which frame it is.
+        const std::string where = file + " (frame " + std::to_string(rdf.frames()) + "): ";
+        try {
+            check_pair_limit(frame, options.rmax, max_pairs);
+            rdf.add_frame(frame.box, frame.positions, numbers.of(frame.species));
+        } catch (const GeometryError& e) {
+            throw GeometryError(where + e.what());
+        } catch (const InvalidArgument& e) {
+            throw InvalidArgument(where + e.what());
+        }
         progress.step(rdf.frames());
     }
     progress.finish();
