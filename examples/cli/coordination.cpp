@@ -180,8 +180,8 @@ int run_coordination(const std::vector<std::string>& args) {
         text = "# i element label cn nearest mean\n";
         for (std::size_t k = 0; k < result.size(); ++k) {
             const bool none = result[k].count == 0;
-            text += std::to_string(k) + "\t" + structure.species[k] + "\t" +
-                    structure.labels[k] + "\t" + std::to_string(result[k].count) + "\t" +
+            text += std::to_string(k) + "\t" + structure.species[k] + "\t" + structure.labels[k] +
+                    "\t" + std::to_string(result[k].count) + "\t" +
                     (none ? std::string("nan") : brief(result[k].nearest)) + "\t" +
                     (none ? std::string("nan") : brief(result[k].mean)) + "\n";
         }

@@ -47,8 +47,12 @@ void json_array(TextSink& sink, const char* key, std::size_t size, Item&& item) 
     sink.put(']');
 }
 
-void put_number(TextSink& sink, std::int32_t x) { sink.put_integer(x); }
-void put_number(TextSink& sink, double x) { sink.put_real(x); }
+void put_number(TextSink& sink, std::int32_t x) {
+    sink.put_integer(x);
+}
+void put_number(TextSink& sink, double x) {
+    sink.put_real(x);
+}
 
 // "[a, b, c]" of three numbers.
 template <class T> void json_triple(TextSink& sink, const T* values) {
@@ -119,8 +123,7 @@ void write_nearest_rows(TextSink& sink, const NearestNeighbors& nearest, char se
 void write_nearest(TextSink& sink, const NearestNeighbors& nearest, TableFormat format,
                    const std::string& file, bool show_progress) {
     const std::size_t n = nearest.j.size();
-    Progress progress("writing neighbours", format == TableFormat::json ? 4 * n : n,
-                      show_progress);
+    Progress progress("writing neighbours", format == TableFormat::json ? 4 * n : n, show_progress);
     switch (format) {
     case TableFormat::tsv:
         sink.put("# i j Sa Sb Sc d\n");

@@ -33,8 +33,8 @@ constexpr std::array<std::array<double, 3>, 8> palette = {{
 
 // A linear map from data to page coordinates along one axis.
 struct Axis {
-    double low, high;    // data range (the outer ticks)
-    double from, to;     // page range
+    double low, high; // data range (the outer ticks)
+    double from, to;  // page range
     std::vector<double> ticks;
     double operator()(double v) const { return from + (v - low) / (high - low) * (to - from); }
 };

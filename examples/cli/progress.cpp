@@ -10,7 +10,9 @@ Progress::Progress(std::string label, std::size_t total, bool enabled)
     : label_(std::move(label)), total_(total), shown_(enabled && ::isatty(STDERR_FILENO) == 1),
       last_(std::chrono::steady_clock::now()) {}
 
-Progress::~Progress() { finish(); }
+Progress::~Progress() {
+    finish();
+}
 
 void Progress::draw(std::size_t done, bool force) {
     const auto now = std::chrono::steady_clock::now();
@@ -37,6 +39,8 @@ void Progress::finish() {
     shown_ = false;
 }
 
-bool stdout_is_terminal() { return ::isatty(STDOUT_FILENO) == 1; }
+bool stdout_is_terminal() {
+    return ::isatty(STDOUT_FILENO) == 1;
+}
 
 } // namespace tricell::cli

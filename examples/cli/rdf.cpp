@@ -196,8 +196,8 @@ void check_pair_limit(const io::Structure& frame, double rmax, std::size_t max_p
 
 Plot rdf_plot(const std::string& file, const std::vector<Column>& columns, std::size_t frames) {
     Plot plot;
-    plot.title = "g(r), " + file + " (" + std::to_string(frames) +
-                 (frames == 1 ? " frame)" : " frames)");
+    plot.title =
+        "g(r), " + file + " (" + std::to_string(frames) + (frames == 1 ? " frame)" : " frames)");
     plot.x_label = "r";
     plot.y_label = "g(r)";
     for (const Column& column : columns) {

@@ -91,7 +91,8 @@ Pixels read_png(const std::string& path) {
             p.drawn += rgb != 0xFFFFFF;
             const int r = int(rgb >> 16), g = int((rgb >> 8) & 0xFF), b = int(rgb & 0xFF);
             // Palette colour 0 is (31, 119, 180).
-            p.first_colour += std::abs(r - 31) < 8 && std::abs(g - 119) < 8 && std::abs(b - 180) < 8;
+            p.first_colour +=
+                std::abs(r - 31) < 8 && std::abs(g - 119) < 8 && std::abs(b - 180) < 8;
         }
     }
     cairo_surface_destroy(image);
@@ -107,9 +108,9 @@ TEST(Plot, PngOfEachKindHasTheSizeAndDrawnPixels) {
         EXPECT_EQ(p.width, plot.width);
         EXPECT_EQ(p.height, plot.height);
         const std::size_t all = std::size_t(plot.width) * std::size_t(plot.height);
-        EXPECT_GT(p.drawn, all / 50);      // axes, text and data
-        EXPECT_LT(p.drawn, all / 2);       // but mostly background
-        EXPECT_GT(p.first_colour, 100u);   // the first series is there
+        EXPECT_GT(p.drawn, all / 50);    // axes, text and data
+        EXPECT_LT(p.drawn, all / 2);     // but mostly background
+        EXPECT_GT(p.first_colour, 100u); // the first series is there
     }
 }
 

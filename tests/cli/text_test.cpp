@@ -150,8 +150,8 @@ TEST(TextSink, KeepsOrderAcrossFlushes) {
                 sink.put_integer(n);
                 sink.put(',');
                 sink.put_integer(u);
-                expected += tricell::cli::exact(x) + "\t" + std::to_string(n) + "," +
-                            std::to_string(u);
+                expected +=
+                    tricell::cli::exact(x) + "\t" + std::to_string(n) + "," + std::to_string(u);
                 if (k % 1000 == 0) {
                     const std::string long_text(700, char('a' + k % 26));
                     sink.put(long_text);

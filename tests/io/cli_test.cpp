@@ -515,9 +515,9 @@ TEST_F(Cli, MaxPairsRefusesLargerSearchesWithStatus1) {
         EXPECT_EQ(run(command + " --max-pairs 1000").status, 0);
     }
     // The default limit stops an absurd request before it runs (these would take hours).
-    for (const std::string command : {"neighbors quartz.cif --cutoff 1000",
-                                      "rdf quartz.cif --rmax 1000 --bins 10",
-                                      "neighbors quartz.cif --nearest 100000000"}) {
+    for (const std::string command :
+         {"neighbors quartz.cif --cutoff 1000", "rdf quartz.cif --rmax 1000 --bins 10",
+          "neighbors quartz.cif --nearest 100000000"}) {
         SCOPED_TRACE(command);
         const Result refused = run(command);
         EXPECT_EQ(refused.status, 1);
@@ -561,8 +561,8 @@ std::pair<unsigned, unsigned> png_size(const std::string& png) {
 
 TEST_F(Cli, PlotsAreWrittenAsPngOrSvg) {
     const std::string dir = output_dir("plots");
-    Result r = run("rdf ../../../examples/data/argon.xyz --rmax 8 --bins 40 --plot " + dir +
-                   "/g.png");
+    Result r =
+        run("rdf ../../../examples/data/argon.xyz --rmax 8 --bins 40 --plot " + dir + "/g.png");
     EXPECT_EQ(r.status, 0) << r.err;
     const std::string png = tricell::test::read_text(dir + "/g.png");
     ASSERT_GT(png.size(), 24u);
