@@ -1,8 +1,9 @@
 // Rate of `tricell neighbors` text output: the writer of the command (examples/cli/pair_table,
-// std::to_chars into a reused buffer) against the writer it replaced (snprintf "%.17g" per line
-// and one std::string per JSON item, kept here verbatim as the baseline), both writing a file
-// through the command's all-or-nothing Output, interleaved in the same run, median of the
-// repeats, wall clock and the process's CPU time. A plain timing program, not a test:
+// std::to_chars into a reused buffer, on 1 and 2 threads as --threads sets) against the writer it
+// replaced (snprintf "%.17g" per line and one std::string per JSON item, kept here verbatim as the
+// baseline), both writing a file through the command's all-or-nothing Output, interleaved in the
+// same run, median of the repeats, wall clock and the process's CPU time (all threads: the work,
+// not the wait). A plain timing program, not a test:
 //
 //   taskset -c 0 build/benchmarks/output_bench [--repeat K] [--dir DIR] [FILE CUTOFF]
 //
@@ -102,6 +103,7 @@ struct Writer {
     const char* name;
     bool legacy;
     tricell::cli::TableFormat format;
+    int threads;
     std::vector<double> seconds;     // wall clock
     std::vector<double> cpu_seconds; // this process, user + system (less noisy on a busy machine)
 };
@@ -157,12 +159,15 @@ int main(int argc, char** argv) {
     const tricell::cli::PairTableHeader header{"x", x.size(), options.cutoff, false};
     using tricell::cli::TableFormat;
     std::vector<Writer> writers = {
-        {"tsv snprintf (before)", true, TableFormat::tsv, {}, {}},
-        {"tsv to_chars", false, TableFormat::tsv, {}, {}},
-        {"csv snprintf (before)", true, TableFormat::csv, {}, {}},
-        {"csv to_chars", false, TableFormat::csv, {}, {}},
-        {"json std::string (before)", true, TableFormat::json, {}, {}},
-        {"json to_chars", false, TableFormat::json, {}, {}},
+        {"tsv snprintf (before)", true, TableFormat::tsv, 1, {}, {}},
+        {"tsv to_chars", false, TableFormat::tsv, 1, {}, {}},
+        {"tsv to_chars, 2 threads", false, TableFormat::tsv, 2, {}, {}},
+        {"csv snprintf (before)", true, TableFormat::csv, 1, {}, {}},
+        {"csv to_chars", false, TableFormat::csv, 1, {}, {}},
+        {"csv to_chars, 2 threads", false, TableFormat::csv, 2, {}, {}},
+        {"json std::string (before)", true, TableFormat::json, 1, {}, {}},
+        {"json to_chars", false, TableFormat::json, 1, {}, {}},
+        {"json to_chars, 2 threads", false, TableFormat::json, 2, {}, {}},
     };
     const std::string path = dir + "/tricell-output-bench.txt";
     for (int r = 0; r < repeat; ++r) {
@@ -172,7 +177,7 @@ int main(int argc, char** argv) {
             Output out(path);
             if (!w.legacy) {
                 tricell::cli::TextSink sink(out);
-                tricell::cli::write_pairs(sink, list, w.format, header, false);
+                tricell::cli::write_pairs(sink, list, w.format, header, w.threads, false);
                 sink.flush();
             } else if (w.format == TableFormat::json) {
                 legacy_json(out, list, x.size(), options.cutoff);

@@ -44,8 +44,8 @@ Options:
   --max-pairs N       refuse lists of more than N pairs before allocating them (default
                       500000000, about 14 GB; 0 = no limit); with --nearest, refuse K times
                       the number of atoms above N
-  --threads T         threads of the search, 0 = all hardware threads (default 1); the output
-                      is the same for any T
+  --threads T         threads of the search and of the formatting of the table, 0 = all
+                      hardware threads (default 1); the output is the same for any T
   --quiet             no progress on stderr (shown only when stderr is a terminal)
   --input-format F    cif, xyz or poscar, instead of the guess from the file name
   -h, --help          this help
@@ -122,7 +122,7 @@ int run_neighbors(const std::vector<std::string>& args) {
             nearest_neighbors(structure.box, structure.positions, nearest, nearest_options);
         Output out(output);
         TextSink sink(out);
-        write_nearest(sink, result, format, file, show_progress);
+        write_nearest(sink, result, format, file, options.threads, show_progress);
         sink.flush();
         out.commit();
         return 0;
@@ -133,7 +133,7 @@ int run_neighbors(const std::vector<std::string>& args) {
     Output out(output);
     TextSink sink(out);
     PairTableHeader header{file, structure.size(), options.cutoff, options.half};
-    write_pairs(sink, list, format, header, show_progress);
+    write_pairs(sink, list, format, header, options.threads, show_progress);
     sink.flush();
     out.commit();
     return 0;

@@ -24,14 +24,15 @@ struct PairTableHeader {
     bool half = false;
 };
 
-/// Writes `list` (with shifts, distances and vectors) in `format`; with `progress`, shows how
-/// far it got on a terminal (progress.hpp).
+/// Writes `list` (with shifts, distances and vectors) in `format`, formatting on `threads`
+/// threads (the text is the same for any number); with `progress`, shows how far it got on a
+/// terminal (progress.hpp).
 void write_pairs(TextSink& sink, const NeighborList& list, TableFormat format,
-                 const PairTableHeader& header, bool progress);
+                 const PairTableHeader& header, int threads, bool progress);
 
 /// Writes the k nearest neighbours of every atom in `format` (atom i's rows in order, nearest
 /// first); JSON has "k" instead of "cutoff" and "half".
 void write_nearest(TextSink& sink, const NearestNeighbors& nearest, TableFormat format,
-                   const std::string& file, bool progress);
+                   const std::string& file, int threads, bool progress);
 
 } // namespace tricell::cli

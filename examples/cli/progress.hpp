@@ -19,14 +19,7 @@ class Progress {
     Progress(const Progress&) = delete;
     Progress& operator=(const Progress&) = delete;
 
-    /// `done` items so far. Cheap enough to call per row: it looks at the clock only every
-    /// few thousand calls.
-    void update(std::size_t done) {
-        if (shown_ && ++calls_ % 4096 == 0) {
-            draw(done, false);
-        }
-    }
-    /// Like update() but always looks at the clock (for slow items such as frames).
+    /// `done` items so far (call it per frame or per block of rows: it looks at the clock).
     void step(std::size_t done) {
         if (shown_) {
             draw(done, false);
@@ -42,7 +35,6 @@ class Progress {
     std::size_t total_;
     bool shown_;
     bool drawn_ = false;
-    std::size_t calls_ = 0;
     std::chrono::steady_clock::time_point last_;
 };
 

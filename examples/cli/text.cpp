@@ -8,14 +8,22 @@
 namespace tricell::cli {
 
 TextSink::TextSink(Output& out, std::size_t capacity)
-    : out_(out), buffer_(capacity < 256 ? 256 : capacity), end_(buffer_.data()),
+    : out_(&out), buffer_(capacity < 256 ? 256 : capacity), end_(buffer_.data()),
+      limit_(buffer_.data() + buffer_.size()) {}
+
+TextSink::TextSink(std::string& text, std::size_t capacity)
+    : text_(&text), buffer_(capacity < 256 ? 256 : capacity), end_(buffer_.data()),
       limit_(buffer_.data() + buffer_.size()) {}
 
 void TextSink::put(std::string_view text) {
     if (text.size() > std::size_t(limit_ - end_)) {
         flush();
         if (text.size() > buffer_.size()) {
-            out_.write(text.data(), text.size());
+            if (out_ != nullptr) {
+                out_->write(text.data(), text.size());
+            } else {
+                text_->append(text);
+            }
             return;
         }
     }
@@ -41,7 +49,12 @@ std::string json_string(const std::string& text) {
 }
 
 void TextSink::flush() {
-    out_.write(buffer_.data(), std::size_t(end_ - buffer_.data()));
+    const std::size_t size = std::size_t(end_ - buffer_.data());
+    if (out_ != nullptr) {
+        out_->write(buffer_.data(), size);
+    } else {
+        text_->append(buffer_.data(), size);
+    }
     end_ = buffer_.data();
 }
 

@@ -1,6 +1,7 @@
 // Exact text output of the command (examples/cli/text.hpp): every real written reads back as the
 // same double and no shorter text would, over random bit patterns (all exponents, subnormals)
 // and the special values; TextSink keeps the order of everything put through any buffer size.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -169,6 +170,52 @@ TEST(TextSink, KeepsOrderAcrossFlushes) {
         EXPECT_EQ(written.str(), expected);
         std::filesystem::remove(path);
     }
+}
+
+// write_blocks() puts every item once and in order, for any block size and number of threads.
+TEST(TextSink, BlocksOnThreadsKeepTheOrder) {
+    const std::filesystem::path path =
+        std::filesystem::temp_directory_path() / "tricell-text-blocks.txt";
+    for (const std::size_t n :
+         {std::size_t(0), std::size_t(1), std::size_t(1000), std::size_t(12345)}) {
+        for (const std::size_t block :
+             {std::size_t(1), std::size_t(7), std::size_t(1000), std::size_t(50000)}) {
+            for (const int threads : {1, 2, 3, 8}) {
+                SCOPED_TRACE(std::to_string(n) + " items, blocks of " + std::to_string(block) +
+                             ", " + std::to_string(threads) + " threads");
+                std::vector<std::size_t> progress;
+                {
+                    tricell::cli::Output out(path.string());
+                    tricell::cli::TextSink sink(out, 256);
+                    tricell::cli::write_blocks(
+                        sink, n, threads, block,
+                        [](tricell::cli::TextSink& s, std::size_t begin, std::size_t end) {
+                            for (std::size_t k = begin; k < end; ++k) {
+                                s.put_real(double(k) / 7);
+                                s.put('\n');
+                            }
+                        },
+                        [&](std::size_t done) { progress.push_back(done); });
+                    sink.flush();
+                    out.commit();
+                }
+                std::string expected;
+                for (std::size_t k = 0; k < n; ++k) {
+                    expected += tricell::cli::exact(double(k) / 7) + "\n";
+                }
+                std::ifstream in(path, std::ios::binary);
+                std::ostringstream written;
+                written << in.rdbuf();
+                EXPECT_EQ(written.str(), expected);
+                EXPECT_TRUE(std::is_sorted(progress.begin(), progress.end()));
+                if (n > 0) {
+                    ASSERT_FALSE(progress.empty());
+                    EXPECT_EQ(progress.back(), n);
+                }
+            }
+        }
+    }
+    std::filesystem::remove(path);
 }
 
 } // namespace

@@ -335,6 +335,24 @@ TEST_F(Cli, NeighborsTsvRealsReadBackExactlyAndMatchTheirVectors) {
     EXPECT_GT(pairs, 50u);
 }
 
+// Tables formatted on several threads (blocks of 32768 rows) are the same text as on one.
+TEST_F(Cli, ThreadsNeverChangeTheText) {
+    const Result rows = run("neighbors si.vasp --cutoff 80 --half --format csv");
+    ASSERT_GT(std::count(rows.out.begin(), rows.out.end(), '\n'), 2 * 32768); // several blocks
+    for (const std::string command :
+         {"neighbors si.vasp --cutoff 80 --sorted", "neighbors si.vasp --cutoff 80 --format json",
+          "neighbors si.vasp --cutoff 80 --half --format csv",
+          "neighbors quartz.cif --nearest 9000 --format json"}) {
+        SCOPED_TRACE(command);
+        const Result one = run(command + " --threads 1");
+        ASSERT_EQ(one.status, 0) << one.err;
+        for (const char* threads : {"2", "3", "0"}) {
+            SCOPED_TRACE(threads);
+            EXPECT_TRUE(run(command + " --threads " + threads).out == one.out);
+        }
+    }
+}
+
 // ---- malformed inputs ---------------------------------------------------------------------
 
 struct BadInput {
