@@ -120,22 +120,18 @@ int run_neighbors(const std::vector<std::string>& args) {
         nearest_options.threads = options.threads;
         const NearestNeighbors result =
             nearest_neighbors(structure.box, structure.positions, nearest, nearest_options);
-        Output out(output);
-        TextSink sink(out);
-        write_nearest(sink, result, format, file, options.threads, show_progress);
-        sink.flush();
-        out.commit();
+        write_text(output, [&](TextSink& sink) {
+            write_nearest(sink, result, format, file, options.threads, show_progress);
+        });
         return 0;
     }
     // compute_neighbors() validates the options (cutoff > 0) before any work.
     const NeighborList list = compute_neighbors(structure.box, structure.positions, options);
 
-    Output out(output);
-    TextSink sink(out);
-    PairTableHeader header{file, structure.size(), options.cutoff, options.half};
-    write_pairs(sink, list, format, header, options.threads, show_progress);
-    sink.flush();
-    out.commit();
+    const PairTableHeader header{file, structure.size(), options.cutoff, options.half};
+    write_text(output, [&](TextSink& sink) {
+        write_pairs(sink, list, format, header, options.threads, show_progress);
+    });
     return 0;
 }
 

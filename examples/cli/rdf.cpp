@@ -284,15 +284,13 @@ int run_rdf(const std::vector<std::string>& args) {
     if (!plot_path.empty()) {
         write_plot(rdf_plot(file, columns, rdf.frames()), plot_path);
     }
-    Output out(output);
-    TextSink sink(out);
-    if (format == TableFormat::json) {
-        write_json(sink, columns, pairs, file, rdf);
-    } else {
-        write_table(sink, columns, format);
-    }
-    sink.flush();
-    out.commit();
+    write_text(output, [&](TextSink& sink) {
+        if (format == TableFormat::json) {
+            write_json(sink, columns, pairs, file, rdf);
+        } else {
+            write_table(sink, columns, format);
+        }
+    });
     return 0;
 }
 

@@ -18,9 +18,9 @@
 #include <thread>
 #include <vector>
 
-namespace tricell::cli {
+#include "cli.hpp"
 
-class Output;
+namespace tricell::cli {
 
 /// Longest text write_real() produces ("-2.2250738585072014e-308" is 24 characters).
 constexpr std::size_t max_real_chars = 32;
@@ -73,6 +73,16 @@ class TextSink {
     char* end_;
     char* limit_;
 };
+
+/// Writes what write(TextSink&) puts to `path` (standard output when empty), completely or not
+/// at all (Output).
+template <class Write> void write_text(const std::string& path, Write&& write) {
+    Output out(path);
+    TextSink sink(out);
+    write(sink);
+    sink.flush();
+    out.commit();
+}
 
 /// Formats items [0, n) into `sink` in order: format(TextSink& s, begin, end) writes the items
 /// [begin, end) into s. threads 0 means all hardware threads. With threads > 1, rounds of `threads`
