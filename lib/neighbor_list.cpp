@@ -53,22 +53,8 @@ constexpr double pi = 3.14159265358979323846;
 // in fractional coordinates can never push a pair just inside the cutoff out of the stencil.
 constexpr double search_margin = 1e-9;
 
+using detail::gather;
 using detail::ListWriter;
-
-// Reorders v in place so that v[k] becomes old v[perm[k]], for `width` values per pair.
-template <class T>
-void gather(PairArray<T>& v, const std::vector<std::size_t>& perm, std::size_t width) {
-    if (v.empty()) {
-        return;
-    }
-    PairArray<T> out(v.size());
-    for (std::size_t k = 0; k < perm.size(); ++k) {
-        for (std::size_t w = 0; w < width; ++w) {
-            out[width * k + w] = v[width * perm[k] + w];
-        }
-    }
-    v.swap(out);
-}
 
 // Runs task(0) .. task(count - 1), each on its own thread (task 0 on the calling thread).
 template <class Task> void run_in_threads(std::size_t count, Task&& task) {

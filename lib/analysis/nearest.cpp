@@ -17,8 +17,6 @@ namespace tricell {
 
 namespace {
 
-constexpr double pi = 3.14159265358979323846;
-
 struct Candidate {
     double d;
     std::uint32_t j;
@@ -35,28 +33,21 @@ bool operator<(const Candidate& l, const Candidate& r) {
     return std::lexicographical_compare(l.s, l.s + 3, r.s, r.s + 3);
 }
 
-// A radius within which about k neighbours are expected: N atoms spread over the cell along
-// periodic axes and over the extent of the positions along open ones (at least a thousandth
-// of the cell, so that atoms in a plane do not make the volume vanish).
-double initial_radius(const Box& box, PointsView positions, std::size_t k) {
-    double volume = std::abs(box.determinant());
-    for (int axis = 0; axis < 3; ++axis) {
-        if (box.periodic(axis)) {
-            continue;
-        }
-        double lo = std::numeric_limits<double>::infinity();
-        double hi = -lo;
-        for (std::size_t i = 0; i < positions.size(); ++i) {
-            const double s = box.inverse().row(axis).dot(positions[i]);
-            lo = std::min(lo, s);
-            hi = std::max(hi, s);
-        }
-        volume *= std::max(hi - lo, 1e-3);
-    }
-    const double density = double(positions.size()) / volume;
-    const double r = 1.1 * std::cbrt(3.0 * double(k) / (4.0 * pi * density));
-    // Non-finite positions give a meaningless estimate; the search then refuses them.
-    return std::isfinite(r) && r > 0 ? r : 1.0;
+// A radius within which about k neighbours are expected, from the search's own density
+// estimate (NeighborSearch::estimated_pairs: N atoms over the region they occupy, the cell
+// along periodic axes and their extent along open ones), probed at the radius the cell volume
+// alone suggests and scaled by the cube root of the shortfall. Only a start: the caller grows
+// it until every atom has k. The probe's build also refuses non-finite positions.
+double initial_radius(const Box& box, PointsView positions, std::size_t k,
+                      const NeighborOptions& options) {
+    const double n = double(positions.size());
+    NeighborOptions probe = options;
+    probe.cutoff = std::cbrt(3.0 * double(k) * std::abs(box.determinant()) / (4.0 * EIGEN_PI * n));
+    NeighborSearch search;
+    search.build(box, positions, probe);
+    const double per_atom = search.estimated_pairs() / n;
+    const double r = 1.1 * probe.cutoff * std::cbrt(double(k) / per_atom);
+    return std::isfinite(r) && r > 0 ? r : probe.cutoff;
 }
 
 } // namespace
@@ -107,7 +98,8 @@ NearestNeighbors nearest_neighbors(const Box& box, PointsView positions, std::si
     NeighborOptions search;
     search.threads = options.threads;
     search.backend = options.backend;
-    search.cutoff = initial_radius(box, positions, k);
+    search.max_pairs = 0; // nothing is stored but the heaps
+    search.cutoff = initial_radius(box, positions, k, search);
     while (true) {
         detail::for_each_half_pair(
             box, positions, search,

@@ -17,8 +17,6 @@ namespace tricell {
 
 namespace {
 
-constexpr double pi = 3.14159265358979323846;
-
 // The bin of d (0 <= d < rmax): the k with edges[k] <= d < edges[k + 1], exactly as the edges
 // say (the first guess from d * bins / rmax can be one off by rounding).
 std::size_t bin_of(double d, const std::vector<double>& edges) {
@@ -126,7 +124,7 @@ void Rdf::add_frame(const Box& box, PointsView positions,
     for (std::size_t k = 0; k < bins; ++k) {
         const double lo = edges_[k];
         const double hi = edges_[k + 1];
-        shell[k] = 4.0 / 3.0 * pi * (hi * hi * hi - lo * lo * lo);
+        shell[k] = 4.0 / 3.0 * EIGEN_PI * (hi * hi * hi - lo * lo * lo);
     }
     const double n = double(n_atoms);
     std::vector<double> total(bins, 0.0);

@@ -13,24 +13,6 @@
 
 namespace tricell {
 
-namespace {
-
-// out[k] = in[order[k]] for `width` values per pair.
-template <class T>
-void permute(PairArray<T>& column, const std::vector<std::size_t>& order, std::size_t width) {
-    if (column.empty()) {
-        return;
-    }
-    PairArray<T> sorted(column.size());
-    for (std::size_t k = 0; k < order.size(); ++k) {
-        std::copy_n(column.begin() + std::ptrdiff_t(width * order[k]), width,
-                    sorted.begin() + std::ptrdiff_t(width * k));
-    }
-    column.swap(sorted);
-}
-
-} // namespace
-
 ShellNeighborList compute_neighbors(const Box& box, PointsView positions,
                                     const std::vector<double>& cutoffs,
                                     const NeighborOptions& options) {
@@ -84,12 +66,12 @@ ShellNeighborList compute_neighbors(const Box& box, PointsView positions,
         order[next[shell[p]]++] = p;
     }
     using W = detail::ListWriter;
-    permute(W::i(list), order, 1);
-    permute(W::j(list), order, 1);
-    permute(W::shifts(list), order, 3);
-    permute(W::vectors(list), order, 3);
+    detail::gather(W::i(list), order, 1);
+    detail::gather(W::j(list), order, 1);
+    detail::gather(W::shifts(list), order, 3);
+    detail::gather(W::vectors(list), order, 3);
     if (options.quantities.distances) {
-        permute(W::distances(list), order, 1);
+        detail::gather(W::distances(list), order, 1);
     } else {
         W::distances(list).clear();
     }

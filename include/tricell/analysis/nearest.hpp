@@ -7,10 +7,11 @@
 // every backend and thread count).
 //
 // How: no all-pairs scan. A radius where about k neighbours are expected is estimated from the
-// density (N over the volume the atoms occupy: the cell along periodic axes, the extent of the
-// positions along open ones); one half-list search at that radius keeps, per atom, its k best
-// candidates in a bounded heap (memory O(N k), nothing else stored). Atoms left with fewer than
-// k candidates make the radius grow by a constant factor and the search run again, until every
+// density (the search's own estimate: N over the volume the atoms occupy, the cell along
+// periodic axes and the extent of the positions along open ones); one half-list search at that
+// radius keeps, per atom, its k best candidates in a bounded heap (memory O(N k), nothing else
+// stored). Atoms left with fewer than k candidates make the radius grow (by the cube root of the
+// worst shortfall, between 1.25 and 2 times) and the search run again for them, until every
 // atom has k. The work is that of a neighbour list holding about N k pairs.
 #pragma once
 
