@@ -78,7 +78,8 @@ void remove_others() {
     }
 }
 
-// A real number > limit, for the --repeat, --threads and --bins guards (strtod as the CLI reads it).
+// A real number > limit, for the --repeat, --threads and --bins guards (strtod as the CLI reads
+// it).
 bool above(const std::string& value, double limit) {
     char* end = nullptr;
     const double x = std::strtod(value.c_str(), &end);
@@ -93,7 +94,8 @@ bool acceptable(const std::vector<std::string>& args) {
             arg.find('\0') != std::string::npos) {
             return false;
         }
-        for (const auto& [option, limit] : {std::pair{"--repeat", 3.0}, {"--threads", 8.0}, {"--bins", 1e5}}) {
+        for (const auto& [option, limit] :
+             {std::pair{"--repeat", 3.0}, {"--threads", 8.0}, {"--bins", 1e5}}) {
             const std::string name = option;
             if ((arg == name && above(next, limit)) ||
                 (arg.rfind(name + "=", 0) == 0 && above(arg.substr(name.size() + 1), limit))) {
@@ -149,8 +151,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         return -1; // not added to the corpus
     }
     if (!args.empty() && (args[0] == "neighbors" || args[0] == "neighbours" ||
-                          args[0] == "coordination" || args[0] == "bench" ||
-                          args[0] == "rdf")) {
+                          args[0] == "coordination" || args[0] == "bench" || args[0] == "rdf")) {
         args.insert(args.begin() + 1, "--max-pairs=100000");
     }
     for (const auto& [name, text] : files) {
