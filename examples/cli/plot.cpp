@@ -7,6 +7,7 @@
 
 #include <cairo-svg.h>
 #include <cairo.h>
+#include <fontconfig/fontconfig.h>
 
 #include "cli.hpp"
 
@@ -216,6 +217,13 @@ void draw(cairo_t* cr, const Plot& plot) {
     }
 }
 
+// cairo and fontconfig keep font caches for the life of the process, which LeakSanitizer reports
+// at exit; with no cairo object left, both are emptied (and fill again on the next plot).
+void release_font_caches() {
+    cairo_debug_reset_static_data();
+    FcFini();
+}
+
 cairo_status_t write_to_output(void* closure, const unsigned char* data, unsigned int length) {
     static_cast<Output*>(closure)->write(reinterpret_cast<const char*>(data), length);
     return CAIRO_STATUS_SUCCESS;
@@ -254,6 +262,7 @@ void write_plot(const Plot& plot, const std::string& path) {
         cairo_surface_finish(surface); // writes the document
         const cairo_status_t finished = cairo_surface_status(surface);
         cairo_surface_destroy(surface);
+        release_font_caches();
         check(status, path);
         check(finished, path);
     } else {
@@ -268,6 +277,7 @@ void write_plot(const Plot& plot, const std::string& path) {
                 ? cairo_surface_write_to_png_stream(surface, write_to_output, &out)
                 : status;
         cairo_surface_destroy(surface);
+        release_font_caches();
         check(status, path);
         check(written, path);
     }
