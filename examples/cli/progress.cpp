@@ -14,9 +14,9 @@ Progress::~Progress() {
     finish();
 }
 
-void Progress::draw(std::size_t done, bool force) {
+void Progress::draw(std::size_t done) {
     const auto now = std::chrono::steady_clock::now();
-    if (!force && now - last_ < std::chrono::milliseconds(200)) {
+    if (now - last_ < std::chrono::milliseconds(200)) {
         return;
     }
     last_ = now;

@@ -22,14 +22,14 @@ class Progress {
     /// `done` items so far (call it per frame or per block of rows: it looks at the clock).
     void step(std::size_t done) {
         if (shown_) {
-            draw(done, false);
+            draw(done);
         }
     }
     /// Clears the line.
     void finish();
 
   private:
-    void draw(std::size_t done, bool force);
+    void draw(std::size_t done);
 
     std::string label_;
     std::size_t total_;

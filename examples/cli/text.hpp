@@ -12,6 +12,7 @@
 
 #include <charconv>
 #include <cstddef>
+#include <exception>
 #include <string>
 #include <string_view>
 #include <system_error>
@@ -103,6 +104,7 @@ void write_blocks(TextSink& sink, std::size_t n, int threads, std::size_t block,
         return;
     }
     std::vector<std::string> texts(static_cast<std::size_t>(threads));
+    std::vector<std::exception_ptr> errors(texts.size());
     for (std::size_t round = 0; round < n; round += block * texts.size()) {
         std::vector<std::thread> workers;
         for (std::size_t t = 0; t < texts.size(); ++t) {
@@ -111,15 +113,24 @@ void write_blocks(TextSink& sink, std::size_t n, int threads, std::size_t block,
                 break;
             }
             const std::size_t end = n - begin < block ? n : begin + block;
-            workers.emplace_back([&format, &texts, t, begin, end] {
-                texts[t].clear();
-                TextSink part(texts[t]);
-                format(part, begin, end);
-                part.flush();
+            workers.emplace_back([&format, &texts, &errors, t, begin, end] {
+                try { // an exception must not leave a thread (std::terminate)
+                    texts[t].clear();
+                    TextSink part(texts[t]);
+                    format(part, begin, end);
+                    part.flush();
+                } catch (...) {
+                    errors[t] = std::current_exception();
+                }
             });
         }
+        for (std::thread& worker : workers) {
+            worker.join();
+        }
         for (std::size_t t = 0; t < workers.size(); ++t) {
-            workers[t].join();
+            if (errors[t]) {
+                std::rethrow_exception(errors[t]);
+            }
             sink.put(texts[t]);
         }
         const std::size_t formatted = round + block * texts.size();
