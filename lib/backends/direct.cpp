@@ -56,16 +56,15 @@ class DirectBackend final : public Backend {
                     : 0;
         }
         // Every image with |T| < reach, S = 0 first, with its bucket of |T|.
-        found_.assign(1, ImageShift{{0, 0, 0}, 0, 0, 0});
-        found_bucket_.assign(1, 0);
-        found_positive_.assign(1, 0);
+        reach_sq_ = reach_ * reach_;
+        found_.assign(1, Found{ImageShift{{0, 0, 0}, 0, 0, 0}, 0, false});
         const Eigen::Vector3d c = h.col(2);
         const double cc = c.squaredNorm();
         for (int sa = -m[0]; sa <= m[0]; ++sa) {
             for (int sb = -m[1]; sb <= m[1]; ++sb) {
                 const Eigen::Vector3d row = h.col(0) * sa + h.col(1) * sb;
                 const double ac = row.dot(c);
-                const double disc = ac * ac - cc * (row.squaredNorm() - reach_ * reach_);
+                const double disc = ac * ac - cc * (row.squaredNorm() - reach_sq_);
                 if (disc < 0) {
                     continue;
                 }
@@ -79,13 +78,13 @@ class DirectBackend final : public Backend {
                         continue;
                     }
                     // the scanner's own shift vector, term for term
-                    const Eigen::Vector3d t = h.col(0) * sa + h.col(1) * sb + h.col(2) * sc;
-                    const double norm = t.norm();
-                    if (norm < reach_) {
-                        found_.push_back(ImageShift{{sa, sb, sc}, t.x(), t.y(), t.z()});
-                        found_bucket_.push_back(bucket(norm));
-                        found_positive_.push_back(sa > 0 ||
-                                                  (sa == 0 && (sb > 0 || (sb == 0 && sc > 0))));
+                    const Eigen::Vector3d t = row + c * sc;
+                    const double norm_sq = t.squaredNorm();
+                    if (norm_sq < reach_sq_) {
+                        const bool positive =
+                            sa > 0 || (sa == 0 && (sb > 0 || (sb == 0 && sc > 0)));
+                        found_.push_back(Found{ImageShift{{sa, sb, sc}, t.x(), t.y(), t.z()},
+                                               bucket(norm_sq), positive});
                     }
                 }
             }
@@ -110,9 +109,9 @@ class DirectBackend final : public Backend {
             const Eigen::Vector3d xa = scan.position(ua);
             // a == b: never through S = 0; a half list takes one of S and -S
             if (half_) {
-                scan.images(ua, ua, positive_.data(), positive_end_[bucket(limit(xa, xa, 0))]);
+                scan.images(ua, ua, positive_.data(), positive_end_[bucket_below(xa, xa, 0)]);
             } else {
-                scan.images(ua, ua, all_.data() + 1, all_end_[bucket(limit(xa, xa, 0))] - 1);
+                scan.images(ua, ua, all_.data() + 1, all_end_[bucket_below(xa, xa, 0)] - 1);
             }
             for (std::size_t b = half_ ? a + 1 : 0; b < atoms_; ++b) {
                 if (b == a) {
@@ -121,7 +120,7 @@ class DirectBackend final : public Backend {
                 const auto ub = std::uint32_t(b);
                 const Eigen::Vector3d xb = scan.position(ub);
                 const double r = (xb - xa).norm();
-                scan.images(ua, ub, all_.data(), all_end_[bucket(limit(xa, xb, r))]);
+                scan.images(ua, ub, all_.data(), all_end_[bucket_below(xa, xb, r)]);
             }
         }
     }
@@ -135,18 +134,21 @@ class DirectBackend final : public Backend {
   private:
     static constexpr std::size_t buckets = 64;
 
-    // The bucket of an image of length `norm`: [0, reach) in `buckets` equal slices (monotone in
-    // norm, so every image shorter than a limit lies in the limit's bucket or before).
-    std::size_t bucket(double norm) const {
-        const double q = norm / reach_ * double(buckets);
+    // The bucket of an image of squared length `norm_sq`: [0, reach^2) in `buckets` equal slices
+    // (monotone in the length, so every image shorter than a limit lies in the bucket of the
+    // limit's square or before; no square root per image).
+    std::size_t bucket(double norm_sq) const {
+        const double q = norm_sq / reach_sq_ * double(buckets);
         return q < double(buckets - 1) ? std::size_t(q) : buckets - 1;
     }
 
     // No image longer than this can bring b within the search radius of a (|D| >= |T| - r, r the
     // computed |x_b - x_a|), with a margin far above the rounding of D, r and |T|.
-    double limit(const Eigen::Vector3d& xa, const Eigen::Vector3d& xb, double r) const {
+    // The last bucket holding such images.
+    std::size_t bucket_below(const Eigen::Vector3d& xa, const Eigen::Vector3d& xb, double r) const {
         const double scale = xa.cwiseAbs().sum() + xb.cwiseAbs().sum() + reach_;
-        return (search_radius_ + r) * (1 + 1e-12) + 1e-12 * scale;
+        const double limit = (search_radius_ + r) * (1 + 1e-12) + 1e-12 * scale;
+        return bucket(limit * limit);
     }
 
     // The found images (only the positive ones if `positive_only`) ordered by bucket into
@@ -154,9 +156,9 @@ class DirectBackend final : public Backend {
     void sort_by_bucket(bool positive_only, std::vector<ImageShift>& images,
                         std::array<std::size_t, buckets>& ends) const {
         ends.fill(0);
-        for (std::size_t k = 0; k < found_.size(); ++k) {
-            if (!positive_only || found_positive_[k]) {
-                ++ends[found_bucket_[k]];
+        for (const Found& f : found_) {
+            if (!positive_only || f.positive) {
+                ++ends[f.bucket];
             }
         }
         std::array<std::size_t, buckets> next{};
@@ -167,9 +169,9 @@ class DirectBackend final : public Backend {
             ends[q] = total;
         }
         images.resize(total);
-        for (std::size_t k = 0; k < found_.size(); ++k) {
-            if (!positive_only || found_positive_[k]) {
-                images[next[found_bucket_[k]]++] = found_[k];
+        for (const Found& f : found_) {
+            if (!positive_only || f.positive) {
+                images[next[f.bucket]++] = f.image;
             }
         }
     }
@@ -177,11 +179,14 @@ class DirectBackend final : public Backend {
     bool half_ = false;
     std::size_t atoms_ = 0;
     double search_radius_ = 0;
-    double reach_ = 1;
-    // Scratch of bin(): the images in enumeration order, their buckets, their sign.
-    std::vector<ImageShift> found_;
-    std::vector<std::size_t> found_bucket_;
-    std::vector<char> found_positive_;
+    double reach_ = 1, reach_sq_ = 1;
+    // Scratch of bin(): the images in enumeration order, each with its bucket and sign.
+    struct Found {
+        ImageShift image;
+        std::size_t bucket;
+        bool positive;
+    };
+    std::vector<Found> found_;
     // All images (S = 0 first) and the positive half, each ordered by bucket of |T|.
     std::vector<ImageShift> all_, positive_;
     std::array<std::size_t, buckets> all_end_{}, positive_end_{};
