@@ -120,7 +120,7 @@ const char* backend_name(SearchBackend backend) {
 SearchBackend parse_backend(const std::string& name) {
     for (const SearchBackend b :
          {SearchBackend::automatic, SearchBackend::dense, SearchBackend::linked,
-          SearchBackend::hash, SearchBackend::octree}) {
+          SearchBackend::hash, SearchBackend::octree, SearchBackend::direct}) {
         if (name == backend_name(b)) {
             return b;
         }

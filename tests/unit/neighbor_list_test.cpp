@@ -14,6 +14,7 @@
 using tricell::Box;
 using tricell::NeighborList;
 using tricell::NeighborOptions;
+using tricell::SearchBackend;
 using tricell::Shift;
 
 namespace {
@@ -210,7 +211,11 @@ TEST(NeighborList, RejectsBadVariableCutoffsNamingThem) {
     EXPECT_THROW_MSG(
         tricell::parse_backend("fast"), tricell::InvalidArgument,
         "unknown search backend 'fast' (expected auto, dense, linked, hash, octree or direct)");
-    EXPECT_EQ(tricell::parse_backend("hash"), tricell::SearchBackend::hash);
+    for (const SearchBackend b :
+         {SearchBackend::automatic, SearchBackend::dense, SearchBackend::linked,
+          SearchBackend::hash, SearchBackend::octree, SearchBackend::direct}) {
+        EXPECT_EQ(tricell::parse_backend(tricell::backend_name(b)), b);
+    }
 }
 
 TEST(NeighborList, ZeroRadiiOrAbsentSpeciesGiveNoPairs) {
