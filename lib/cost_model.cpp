@@ -50,7 +50,10 @@ std::vector<std::size_t> split_work(const std::vector<double>& work, std::size_t
 }
 
 bool choose_direct(std::size_t atoms, double min_width, double radius) {
-    return atoms <= 12 && (!std::isfinite(min_width) || min_width < 2 * radius);
+    if (!std::isfinite(min_width)) {
+        return atoms <= 12;
+    }
+    return (atoms <= 12 && min_width < 2 * radius) || (atoms <= 32 && min_width < radius);
 }
 
 SearchBackend choose_grid_backend(double full_resolution_cells, double max_cells) {
