@@ -43,7 +43,17 @@ class DirectBackend final : public Backend {
         }
         // |D| >= |T| - |x_b - x_a| and |x_b - x_a| <= the diagonal of the atoms' bounding box
         // (plus a margin for the rounding between fractional and Cartesian positions).
-        reach_ = input.search_radius + (hi - lo).norm() * (1 + 1e-12) + 1e-12;
+        // The diagonal is rounded up to a 16th of the radius: a longer reach only adds images
+        // that no pair's own limit takes, and atoms moving inside a fixed cell then leave the
+        // reach, and with it the images, unchanged from call to call.
+        const double step = input.search_radius / 16;
+        const double spread = std::ceil(((hi - lo).norm() * (1 + 1e-12) + 1e-12) / step) * step;
+        const double reach = input.search_radius + spread;
+        if (same_images(input, reach)) {
+            return; // the images of the last call (in the backend's own pooled object)
+        }
+        images_valid_ = false; // until the new images are complete
+        reach_ = reach;
         // Along a periodic axis the wrapped fractional coordinates differ by less than 1, and
         // |D| >= w_k |(s_b - s_a + S)_k|, so |S_k| < r / w_k + 1 whatever the spread of the atoms
         // along open axes (which only loosens the |T| bound above).
@@ -92,6 +102,12 @@ class DirectBackend final : public Backend {
         // Counting sort by bucket (stable: S = 0 stays first of `all_`).
         sort_by_bucket(false, all_, all_end_);
         sort_by_bucket(true, positive_, positive_end_);
+        images_h_ = h;
+        for (int k = 0; k < 3; ++k) {
+            images_periodic_[std::size_t(k)] = input.frame.periodic(k);
+        }
+        images_radius_ = input.search_radius;
+        images_valid_ = true;
     }
 
     std::size_t unit_count() const override { return atoms_; }
@@ -133,6 +149,21 @@ class DirectBackend final : public Backend {
 
   private:
     static constexpr std::size_t buckets = 64;
+
+    // True when the images of the last bin() serve this one: the same frame, periodicity,
+    // radius and reach (all the enumeration reads).
+    bool same_images(const BinningInput& input, double reach) const {
+        if (!images_valid_ || reach != reach_ || input.search_radius != images_radius_ ||
+            input.frame.matrix() != images_h_) {
+            return false;
+        }
+        for (int k = 0; k < 3; ++k) {
+            if (input.frame.periodic(k) != images_periodic_[std::size_t(k)]) {
+                return false;
+            }
+        }
+        return true;
+    }
 
     // The bucket of an image of squared length `norm_sq`: [0, reach^2) in `buckets` equal slices
     // (monotone in the length, so every image shorter than a limit lies in the bucket of the
@@ -180,6 +211,11 @@ class DirectBackend final : public Backend {
     std::size_t atoms_ = 0;
     double search_radius_ = 0;
     double reach_ = 1, reach_sq_ = 1;
+    // What the images were enumerated for (same_images()).
+    bool images_valid_ = false;
+    Eigen::Matrix3d images_h_ = Eigen::Matrix3d::Zero();
+    std::array<bool, 3> images_periodic_{};
+    double images_radius_ = 0;
     // Scratch of bin(): the images in enumeration order, each with its bucket and sign.
     struct Found {
         ImageShift image;
