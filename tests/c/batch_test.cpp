@@ -36,16 +36,6 @@ BatchHandle make_batch() {
     return BatchHandle(p);
 }
 
-template <class A, class B> void expect_same(const A& cxx, const B* c, std::size_t n) {
-    ASSERT_EQ(cxx.size(), n);
-    for (std::size_t k = 0; k < n; ++k) {
-        if (cxx[k] != c[k]) {
-            ADD_FAILURE() << "entry " << k << " differs: " << cxx[k] << " vs " << c[k];
-            return;
-        }
-    }
-}
-
 // A batch of random systems (tests/support) sharing the first one's cutoff.
 struct Batch {
     std::vector<RandomSystem> systems;
@@ -67,12 +57,6 @@ Batch random_batch(std::uint64_t seed) {
     }
     return b;
 }
-
-#define EXPECT_STATUS(call, status, message)                                                       \
-    do {                                                                                           \
-        EXPECT_EQ((call), (status));                                                               \
-        EXPECT_EQ(std::string(tricell_last_error()), std::string(message));                        \
-    } while (0)
 
 } // namespace
 
@@ -105,19 +89,19 @@ TEST(CApiBatch, MatchesCxxBitForBitAndBruteForce) {
         tricell::compute_neighbors_batch(b.cxx, cxx_options, cxx);
 
         ASSERT_EQ(view.structures, b.c.size());
-        expect_same(cxx.pair_offsets(), view.pair_offsets, b.c.size() + 1);
-        expect_same(cxx.atom_offsets(), view.atom_offsets, b.c.size() + 1);
+        expect_same_array(cxx.pair_offsets(), view.pair_offsets, b.c.size() + 1);
+        expect_same_array(cxx.atom_offsets(), view.atom_offsets, b.c.size() + 1);
         const tricell_pairs& p = view.pairs;
         ASSERT_EQ(p.size, cxx.size());
-        expect_same(cxx.i(), p.i, p.size);
-        expect_same(cxx.j(), p.j, p.size);
-        expect_same(cxx.shifts(), p.shifts, 3 * p.size);
-        expect_same(cxx.distances(), p.distances, p.size);
-        expect_same(cxx.vectors(), p.vectors, 3 * p.size);
+        expect_same_array(cxx.i(), p.i, p.size);
+        expect_same_array(cxx.j(), p.j, p.size);
+        expect_same_array(cxx.shifts(), p.shifts, 3 * p.size);
+        expect_same_array(cxx.distances(), p.distances, p.size);
+        expect_same_array(cxx.vectors(), p.vectors, 3 * p.size);
         ASSERT_EQ(p.offsets != nullptr, o.sorted == 1);
         if (o.sorted == 1 && !cxx.offsets().empty()) {
             ASSERT_EQ(p.atoms, cxx.atom_offsets().back());
-            expect_same(cxx.offsets(), p.offsets, p.atoms + 1);
+            expect_same_array(cxx.offsets(), p.offsets, p.atoms + 1);
         }
 
         // Each structure's slice against the oracle.
