@@ -106,7 +106,7 @@ const char* backend_name(SearchBackend backend) {
 SearchBackend parse_backend(const std::string& name) {
     for (const SearchBackend b :
          {SearchBackend::automatic, SearchBackend::dense, SearchBackend::linked,
-          SearchBackend::hash, SearchBackend::octree}) {
+          SearchBackend::hash, SearchBackend::octree, SearchBackend::direct}) {
         if (name == backend_name(b)) {
             return b;
         }
@@ -731,6 +731,17 @@ NeighborList compute_neighbors(const Box& box, PointsView positions,
 void compute_neighbors(const Box& box, PointsView positions, const NeighborOptions& options,
                        NeighborList& out) {
     out.clear();
+    // Small systems are called millions of times (one cell per step of a potential): they reuse
+    // one search object per thread, whose buffers (atoms, images, the backends) then stop being
+    // allocated once grown. Larger ones use a fresh object, so that no large buffer outlives
+    // its call.
+    constexpr std::size_t reuse_below = 1024; // atoms
+    if (positions.size() < reuse_below) {
+        thread_local NeighborSearch search;
+        search.build(box, positions, options);
+        search.compute(out);
+        return;
+    }
     NeighborSearch search;
     search.build(box, positions, options);
     search.compute(out);
