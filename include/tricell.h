@@ -168,6 +168,53 @@ typedef struct tricell_pairs {
 TRICELL_C_API tricell_status tricell_neighbor_list_pairs(const tricell_neighbor_list* list,
                                                          tricell_pairs* pairs);
 
+/* ---- Batches of small structures ---------------------------------------------------------- */
+
+/* One structure of a batch: its box and its n positions (3 n doubles; may be NULL when
+ * n == 0). */
+typedef struct tricell_structure {
+    tricell_box box;
+    const double* positions;
+    size_t n;
+} tricell_structure;
+
+/* The lists of a batch; reuse it to keep its buffers (and one search object per thread). */
+typedef struct tricell_batch_list tricell_batch_list;
+
+TRICELL_C_API tricell_status tricell_batch_list_create(tricell_batch_list** list);
+TRICELL_C_API void tricell_batch_list_destroy(tricell_batch_list* list);
+
+/* The neighbour lists of count structures (structures may be NULL when count == 0), each with
+ * its own box, periodicity and positions and one set of options for all: every structure gets
+ * exactly the pairs, order and values tricell_neighbors() gives it alone, stored one structure
+ * after the other in shared arrays. options.threads threads work across structures (0 = all
+ * cores); the result does not depend on it. options.max_pairs bounds the whole batch.
+ * options.radii and options.species must be NULL (one cutoff, or one species table without
+ * per-atom species, cannot serve structures of different sizes). On failure the list is empty
+ * and the message names the lowest failing structure ("structure 17: position 3 is not finite
+ * ..."). */
+TRICELL_C_API tricell_status tricell_neighbors_batch(const tricell_structure* structures,
+                                                     size_t count,
+                                                     const tricell_neighbor_options* options,
+                                                     tricell_batch_list* list);
+
+/* A view of a batch's lists (pointers into its arrays, no copy; valid until the next call that
+ * changes or destroys the list). */
+typedef struct tricell_batch_pairs {
+    size_t structures;          /* count of the last call */
+    const size_t* pair_offsets; /* structures + 1: structure s's pairs are
+                                   [pair_offsets[s], pair_offsets[s + 1]) of `pairs` */
+    const size_t* atom_offsets; /* structures + 1: structure s's atoms are numbered
+                                   atom_offsets[s] .. atom_offsets[s + 1] - 1 among all atoms */
+    tricell_pairs pairs;        /* every pair; i and j number the atoms of their own structure
+                                   from 0. When sorted, pairs.atoms is the total atom count and
+                                   atom a of structure s has the pairs
+                                   [offsets[k], offsets[k + 1]) with k = atom_offsets[s] + a */
+} tricell_batch_pairs;
+
+TRICELL_C_API tricell_status tricell_batch_list_pairs(const tricell_batch_list* list,
+                                                      tricell_batch_pairs* pairs);
+
 /* ---- Verlet lists ----------------------------------------------------------------------- */
 
 /* neighbors.cutoff is r_c; candidates are built at r_c + skin and refreshed by every update.

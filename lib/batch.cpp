@@ -34,15 +34,6 @@ struct BatchWorker {
     std::vector<std::size_t> offsets;
 };
 
-} // namespace detail
-
-namespace {
-
-// Appends all of `from` to `to`.
-template <class T> void append(PairArray<T>& to, const PairArray<T>& from) {
-    to.insert(to.end(), from.begin(), from.end());
-}
-
 // Rethrows the exception in flight with "structure s: " before its message, keeping its type.
 [[noreturn]] void rethrow_for_structure(std::size_t s) {
     try {
@@ -54,6 +45,15 @@ template <class T> void append(PairArray<T>& to, const PairArray<T>& from) {
     } catch (const Error& e) {
         detail::fail<Error>("structure ", s, ": ", e.what());
     }
+}
+
+} // namespace detail
+
+namespace {
+
+// Appends all of `from` to `to`.
+template <class T> void append(PairArray<T>& to, const PairArray<T>& from) {
+    to.insert(to.end(), from.begin(), from.end());
 }
 
 // Estimated cost of one structure's search, in units of one stored pair: a fixed cost per call
@@ -161,7 +161,7 @@ void compute_neighbors_batch(const BatchStructure* structures, std::size_t count
                                  list.offsets().end() - (list.offsets().empty() ? 0 : 1));
             } catch (...) {
                 try {
-                    rethrow_for_structure(s);
+                    detail::rethrow_for_structure(s);
                 } catch (...) {
                     errors[t] = std::current_exception();
                 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <numeric>
 
 #include "tricell/error.hpp"
@@ -50,7 +51,10 @@ std::vector<std::size_t> split_work(const std::vector<double>& work, std::size_t
 }
 
 bool choose_direct(std::size_t atoms, double min_width, double radius) {
-    return atoms <= 12 && (!std::isfinite(min_width) || min_width < 2 * radius);
+    if (!std::isfinite(min_width)) {
+        return atoms <= 12;
+    }
+    return (atoms <= 12 && min_width < 2 * radius) || (atoms <= 32 && min_width < radius);
 }
 
 SearchBackend choose_grid_backend(double full_resolution_cells, double max_cells) {
@@ -224,14 +228,32 @@ double octree_cost_per_atom(double density, double cutoff, const OctreeCosts& co
 }
 
 bool grid_always_cheaper(SearchBackend grid, double cutoff, const OctreeCosts& costs) {
+    // Both costs depend on the density only through x = rho r^3, so the answer does not depend
+    // on the cutoff; the scan (70 points, each with an exp and two cube roots: about 50k
+    // instructions, as much as a whole 1-atom search) is kept per thread for the last grid and
+    // constants, since auto asks it on every build.
+    struct Memo {
+        bool valid = false;
+        SearchBackend grid = SearchBackend::dense;
+        OctreeCosts costs;
+        bool cheaper = false;
+    };
+    thread_local Memo memo;
+    if (memo.valid && memo.grid == grid &&
+        std::memcmp(&memo.costs, &costs, sizeof(OctreeCosts)) == 0) {
+        return memo.cheaper;
+    }
     const double volume = cutoff * cutoff * cutoff;
+    bool cheaper = true;
     for (double x = 1e-6; x <= 16; x *= 1.25) { // up to the densest fitted (0.1 /A^3 at 5 A)
         if (grid_cost_per_atom(grid, x / volume, cutoff, costs) >=
             octree_cost_per_atom(x / volume, cutoff, costs)) {
-            return false;
+            cheaper = false;
+            break;
         }
     }
-    return true;
+    memo = Memo{true, grid, costs, cheaper};
+    return cheaper;
 }
 
 double octree_crossover(SearchBackend grid, double rho_hi, double rho_lo, double cutoff,

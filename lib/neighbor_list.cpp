@@ -57,22 +57,8 @@ constexpr double pi = 3.14159265358979323846;
 // in fractional coordinates can never push a pair just inside the cutoff out of the stencil.
 constexpr double search_margin = 1e-9;
 
+using detail::gather;
 using detail::ListWriter;
-
-// Reorders v in place so that v[k] becomes old v[perm[k]], for `width` values per pair.
-template <class T>
-void gather(PairArray<T>& v, const std::vector<std::size_t>& perm, std::size_t width) {
-    if (v.empty()) {
-        return;
-    }
-    PairArray<T> out(v.size());
-    for (std::size_t k = 0; k < perm.size(); ++k) {
-        for (std::size_t w = 0; w < width; ++w) {
-            out[width * k + w] = v[width * perm[k] + w];
-        }
-    }
-    v.swap(out);
-}
 
 } // namespace
 
@@ -97,7 +83,7 @@ const char* backend_name(SearchBackend backend) {
 SearchBackend parse_backend(const std::string& name) {
     for (const SearchBackend b :
          {SearchBackend::automatic, SearchBackend::dense, SearchBackend::linked,
-          SearchBackend::hash, SearchBackend::octree}) {
+          SearchBackend::hash, SearchBackend::octree, SearchBackend::direct}) {
         if (name == backend_name(b)) {
             return b;
         }
@@ -779,6 +765,17 @@ NeighborList compute_neighbors(const Box& box, PointsView positions,
 void compute_neighbors(const Box& box, PointsView positions, const NeighborOptions& options,
                        NeighborList& out) {
     out.clear();
+    // Small systems are called millions of times (one cell per step of a potential): they reuse
+    // one search object per thread, whose buffers (atoms, images, the backends) then stop being
+    // allocated once grown. Larger ones use a fresh object, so that no large buffer outlives
+    // its call.
+    constexpr std::size_t reuse_below = 1024; // atoms
+    if (positions.size() < reuse_below) {
+        thread_local NeighborSearch search;
+        search.build(box, positions, options);
+        search.compute(out);
+        return;
+    }
     NeighborSearch search;
     search.build(box, positions, options);
     search.compute(out);

@@ -17,6 +17,7 @@ packages=(
     libopenmpi-dev openmpi-bin # tricell::mpi and its multi-rank tests
     clang-14 libclang-rt-14-dev   # libFuzzer harnesses
     libcairo2-dev              # plots (SVG and PNG)
+    libfontconfig-dev          # plots: emptying its caches before exit (LeakSanitizer)
 )
 
 missing=()

@@ -95,19 +95,8 @@ int run_bench(const std::vector<std::string>& args) {
             options.quantities.distances = q.find('d') != std::string::npos;
             options.quantities.vectors = q.find('D') != std::string::npos;
         } else if (arguments.option("--repeat")) {
-            const double k = arguments.real();
-            if (!(k >= 1 && k <= 1e6) || k != double(long(k))) {
-                arguments.fail("--repeat must be a whole number in [1, 1000000], got '" +
-                               arguments.value() + "'");
-            }
-            repeat = long(k);
-        } else if (arguments.option("--threads")) {
-            const double t = arguments.real();
-            if (!(t >= 0 && t <= 1024) || t != double(int(t))) {
-                arguments.fail("--threads must be a whole number in [0, 1024], got '" +
-                               arguments.value() + "'");
-            }
-            options.threads = int(t);
+            repeat = long(arguments.whole(1, 1000000));
+        } else if (take_threads(arguments, options.threads)) {
         } else if (take_max_pairs(arguments, options.max_pairs)) {
         } else if (arguments.option("--backend")) {
             const std::string name = arguments.value();

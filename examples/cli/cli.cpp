@@ -1,4 +1,5 @@
 #include "cli.hpp"
+#include "text.hpp"
 
 #include <cerrno>
 #include <cmath>
@@ -76,6 +77,15 @@ double Arguments::real() const {
     return x;
 }
 
+std::size_t Arguments::whole(std::size_t low, std::size_t high) const {
+    const double x = real();
+    if (!(x >= double(low) && x <= double(high)) || x != std::floor(x)) {
+        fail(matched_ + " must be a whole number in [" + std::to_string(low) + ", " +
+             std::to_string(high) + "], got '" + value_ + "'");
+    }
+    return std::size_t(x);
+}
+
 bool Arguments::positional() const {
     const std::string& arg = current();
     return options_ended_ || arg.empty() || arg[0] != '-' || arg == "-";
@@ -101,9 +111,8 @@ io::Format input_format(const Arguments& arguments, const std::string& name) {
 }
 
 std::string exact(double value) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.17g", value);
-    return text;
+    char text[max_real_chars];
+    return std::string(text, write_real(text, value));
 }
 
 std::string brief(double value) {
@@ -152,8 +161,8 @@ Output::~Output() {
     }
 }
 
-void Output::write(const std::string& text) {
-    std::fwrite(text.data(), 1, text.size(), stream_);
+void Output::write(const char* text, std::size_t size) {
+    std::fwrite(text, 1, size, stream_);
 }
 
 void Output::commit() {
@@ -201,6 +210,39 @@ bool take_max_pairs(Arguments& arguments, std::size_t& max_pairs) {
                        arguments.value() + "'");
     }
     max_pairs = std::size_t(n);
+    return true;
+}
+
+bool take_format(Arguments& arguments, TableFormat& format) {
+    if (!arguments.option("--format")) {
+        return false;
+    }
+    const std::string& name = arguments.value();
+    if (name == "tsv") {
+        format = TableFormat::tsv;
+    } else if (name == "csv") {
+        format = TableFormat::csv;
+    } else if (name == "json") {
+        format = TableFormat::json;
+    } else {
+        arguments.fail("--format must be tsv, csv or json, got '" + name + "'");
+    }
+    return true;
+}
+
+bool take_threads(Arguments& arguments, int& threads) {
+    if (!arguments.option("--threads")) {
+        return false;
+    }
+    threads = int(arguments.whole(0, 1024));
+    return true;
+}
+
+bool take_quiet(Arguments& arguments, bool& quiet) {
+    if (!arguments.flag("--quiet")) {
+        return false;
+    }
+    quiet = true;
     return true;
 }
 

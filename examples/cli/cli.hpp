@@ -33,6 +33,9 @@ class Arguments {
     const std::string& value() const { return value_; }
     /// Value of the option just matched, as a finite real.
     double real() const;
+    /// Value of the option just matched, as a whole number in [low, high] (UsageError
+    /// "--name must be a whole number in [low, high], got 'value'" otherwise).
+    std::size_t whole(std::size_t low, std::size_t high) const;
     /// The current argument is a positional one (not starting with '-', or after "--").
     bool positional() const;
     const std::string& current() const { return args_[index_]; }
@@ -60,10 +63,20 @@ bool take_input(Arguments& arguments, io::ReadOptions& read_options, std::string
 /// --max-pairs N (a whole number, 0 = no limit): consumes it into max_pairs and says whether
 /// it did. The library refuses a larger list before allocating it.
 bool take_max_pairs(Arguments& arguments, std::size_t& max_pairs);
+/// The text formats of the tables (--format).
+enum class TableFormat { tsv, csv, json };
+/// --format tsv|csv|json: consumes it into format and says whether it did.
+bool take_format(Arguments& arguments, TableFormat& format);
+
+/// --threads T (0 = all hardware threads, at most 1024): consumes it and says whether it did.
+bool take_threads(Arguments& arguments, int& threads);
+/// --quiet: consumes it into quiet and says whether it did.
+bool take_quiet(Arguments& arguments, bool& quiet);
+
 /// UsageError "missing FILE" when no FILE was given.
 void require_file(const Arguments& arguments, const std::string& file);
 
-/// %.17g: reads back as the same double.
+/// The shortest text that reads back as the same double (write_real in text.hpp).
 std::string exact(double value);
 /// %.10g: for people.
 std::string brief(double value);
@@ -79,7 +92,8 @@ class Output {
     Output& operator=(const Output&) = delete;
 
     std::FILE* stream() const { return stream_; }
-    void write(const std::string& text);
+    void write(const std::string& text) { write(text.data(), text.size()); }
+    void write(const char* text, std::size_t size);
     /// Flushes and, for a file, closes and renames it into place. Throws std::runtime_error.
     void commit();
 
@@ -98,5 +112,6 @@ int run_neighbors(const std::vector<std::string>& args);
 int run_info(const std::vector<std::string>& args);
 int run_coordination(const std::vector<std::string>& args);
 int run_bench(const std::vector<std::string>& args);
+int run_rdf(const std::vector<std::string>& args);
 
 } // namespace tricell::cli

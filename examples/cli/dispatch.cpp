@@ -20,8 +20,11 @@ const char* const usage = R"(usage: tricell COMMAND FILE [OPTIONS]
 
 Commands:
   neighbors FILE --cutoff R      all pairs closer than R, with image shifts and vectors
+  neighbors FILE --nearest K     the K nearest neighbours of every atom
   info FILE                      formula, cell, volume, widths, space group, Niggli cell
-  coordination FILE --cutoff R   coordination number and nearest neighbour of every atom
+  coordination FILE --cutoff R   coordination number and bond lengths of every atom, or per
+                                 element (--summary), with a histogram plot (--plot)
+  rdf FILE --rmax R --bins N     g(r) and n(r), total and partial, over every frame of FILE
   bench FILE --cutoff R          time the neighbour list (pairs per second, peak memory)
 
 FILE is a CIF (*.cif), an extended XYZ (*.xyz, *.extxyz) or a VASP 5 POSCAR (POSCAR, CONTCAR,
@@ -31,8 +34,26 @@ Run 'tricell COMMAND --help' for the options of a command.
 Exit status: 0 on success, 1 for a rejected input or value, 2 for a malformed command line.
 )";
 
+// The library names its own fields ("raise NeighborOptions::max_pairs to allow it",
+// "RdfOptions::rmax must be ..."); a command-line user sets options instead, so the message
+// names them.
+std::string in_command_words(std::string text) {
+    const auto replace = [&](const std::string& from, const std::string& to) {
+        for (std::size_t at = text.find(from); at != std::string::npos;
+             at = text.find(from, at + to.size())) {
+            text.replace(at, from.size(), to);
+        }
+    };
+    replace("raise NeighborOptions::max_pairs to allow it",
+            "raise --max-pairs to allow it (0 = no limit)");
+    replace("max_pairs = ", "--max-pairs ");
+    replace("RdfOptions::rmax", "--rmax");
+    replace("RdfOptions::bins", "--bins");
+    return text;
+}
+
 void one_line(const char* message) {
-    std::string text = message;
+    std::string text = in_command_words(message);
     for (char& c : text) {
         if (c == '\n' || c == '\r') {
             c = ' ';
@@ -73,8 +94,11 @@ int run(const std::vector<std::string>& args) {
         if (command == "bench") {
             return run_bench(rest);
         }
+        if (command == "rdf") {
+            return run_rdf(rest);
+        }
         throw UsageError("unknown command '" + command +
-                         "', expected neighbors, info, coordination or bench (see "
+                         "', expected neighbors, info, coordination, rdf or bench (see "
                          "tricell --help)");
     } catch (const UsageError& e) {
         one_line(e.what());

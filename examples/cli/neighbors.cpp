@@ -1,11 +1,16 @@
-// tricell neighbors: the neighbour list of a structure file, as TSV, CSV or JSON.
+// tricell neighbors: the neighbour list of a structure file (all pairs within a cutoff, or the
+// k nearest of every atom), as TSV, CSV or JSON.
 #include <cstdio>
-#include <optional>
 #include <string>
 
+#include <tricell/analysis/nearest.hpp>
+#include <tricell/error.hpp>
 #include <tricell/neighbor_list.hpp>
 
 #include "cli.hpp"
+#include "pair_table.hpp"
+#include "progress.hpp"
+#include "text.hpp"
 
 namespace tricell::cli {
 
@@ -13,7 +18,11 @@ namespace {
 
 const char* const help =
     R"(usage: tricell neighbors FILE --cutoff R [--half] [--sorted] [--format tsv|csv|json]
-                         [--output PATH] [--max-pairs N] [--input-format cif|xyz|poscar]
+                         [--output PATH] [--max-pairs N] [--threads T] [--quiet]
+                         [--input-format cif|xyz|poscar]
+       tricell neighbors FILE --nearest K [--format tsv|csv|json] [--output PATH]
+                         [--max-pairs N] [--threads T] [--quiet]
+                         [--input-format cif|xyz|poscar]
 
 Lists every pair (i, j, S) of atoms closer than R: D = x_j - x_i + H S with |D| < R, where x
 are the positions in the order the file gives them (for a CIF, the symmetry-expanded unit
@@ -21,102 +30,33 @@ cell), H has the lattice vectors a, b, c as columns and S = (Sa, Sb, Sc) is the 
 (0 along non-periodic axes). Indices are 0-based. An atom paired with its own periodic image is
 listed; an atom with itself is not.
 
+With --nearest K instead of --cutoff, lists the K nearest (j, S) of every atom, periodic images
+included (K may exceed the number of atoms), nearest first, ties broken by j and then S, so
+the output is the same on every run.
+
 Options:
-  --cutoff R          cutoff in the length unit of the file (Angstrom), R > 0 (required)
+  --cutoff R          cutoff in the length unit of the file (Angstrom), R > 0
+  --nearest K         the K nearest neighbours of every atom instead of a cutoff, K >= 1
   --half              each pair once, oriented i < j (for i == j: S lexicographically positive)
   --sorted            sort by i, then j, then Sa, Sb, Sc (otherwise the order is unspecified)
   --format F          tsv (default), csv or json
   --output PATH       write to PATH, completely or not at all, instead of standard output
   --max-pairs N       refuse lists of more than N pairs before allocating them (default
-                      500000000, about 14 GB; 0 = no limit)
+                      500000000, about 14 GB; 0 = no limit); with --nearest, refuse K times
+                      the number of atoms above N
+  --threads T         threads of the search and of the formatting of the table, 0 = all
+                      hardware threads (default 1); the output is the same for any T
+  --quiet             no progress on stderr (shown only when stderr is a terminal)
   --input-format F    cif, xyz or poscar, instead of the guess from the file name
   -h, --help          this help
 
 Output: tsv prints a first line '# i j Sa Sb Sc d Dx Dy Dz' and then one tab-separated line per
 pair; csv prints the header 'i,j,Sa,Sb,Sc,d,Dx,Dy,Dz' and comma-separated lines; json prints
 one object {"file", "atoms", "cutoff", "half", "pairs", "i", "j", "S", "d", "D"} with one array
-per column (S and D as arrays of triples). Reals have 17 significant digits and read back
-exactly.
+per column (S and D as arrays of triples). With --nearest the columns are i j Sa Sb Sc d (K
+rows per atom, atom by atom) and json has "k" instead of "cutoff" and "half". Reals are written in the shortest form that reads
+back as the same double (at most 17 significant digits).
 )";
-
-enum class TableFormat { tsv, csv, json };
-
-std::string json_string(const std::string& text) {
-    std::string out = "\"";
-    for (char c : text) {
-        if (c == '"' || c == '\\') {
-            out += '\\';
-            out += c;
-        } else if (static_cast<unsigned char>(c) < 0x20) {
-            char escaped[8];
-            std::snprintf(escaped, sizeof escaped, "\\u%04x", c);
-            out += escaped;
-        } else {
-            out += c;
-        }
-    }
-    return out + "\"";
-}
-
-void write_table(Output& out, const NeighborList& list, char separator, bool comment_header) {
-    const char s = separator;
-    std::string buffer =
-        comment_header ? "# i j Sa Sb Sc d Dx Dy Dz\n" : "i,j,Sa,Sb,Sc,d,Dx,Dy,Dz\n";
-    char line[256];
-    for (std::size_t k = 0; k < list.size(); ++k) {
-        const Shift shift = list.shift(k);
-        const Eigen::Vector3d d = list.vector(k);
-        std::snprintf(line, sizeof line, "%u%c%u%c%d%c%d%c%d%c%.17g%c%.17g%c%.17g%c%.17g\n",
-                      list.i()[k], s, list.j()[k], s, shift[0], s, shift[1], s, shift[2], s,
-                      list.distances()[k], s, d[0], s, d[1], s, d[2]);
-        buffer += line;
-        if (buffer.size() > (1U << 16)) {
-            out.write(buffer);
-            buffer.clear();
-        }
-    }
-    out.write(buffer);
-}
-
-void write_json(Output& out, const NeighborList& list, const std::string& file, std::size_t atoms,
-                const NeighborOptions& options) {
-    std::string buffer = "{\n  \"file\": " + json_string(file) +
-                         ",\n  \"atoms\": " + std::to_string(atoms) +
-                         ",\n  \"cutoff\": " + exact(options.cutoff) +
-                         ",\n  \"half\": " + (options.half ? "true" : "false") +
-                         ",\n  \"pairs\": " + std::to_string(list.size());
-    const auto flush = [&] {
-        if (buffer.size() > (1U << 16)) {
-            out.write(buffer);
-            buffer.clear();
-        }
-    };
-    const auto array = [&](const char* key, auto&& item) {
-        buffer += ",\n  \"";
-        buffer += key;
-        buffer += "\": [";
-        for (std::size_t k = 0; k < list.size(); ++k) {
-            buffer += k == 0 ? "" : ", ";
-            buffer += item(k);
-            flush();
-        }
-        buffer += "]";
-    };
-    array("i", [&](std::size_t k) { return std::to_string(list.i()[k]); });
-    array("j", [&](std::size_t k) { return std::to_string(list.j()[k]); });
-    array("S", [&](std::size_t k) {
-        const Shift shift = list.shift(k);
-        return "[" + std::to_string(shift[0]) + ", " + std::to_string(shift[1]) + ", " +
-               std::to_string(shift[2]) + "]";
-    });
-    array("d", [&](std::size_t k) { return exact(list.distances()[k]); });
-    array("D", [&](std::size_t k) {
-        const Eigen::Vector3d d = list.vector(k);
-        return "[" + exact(d[0]) + ", " + exact(d[1]) + ", " + exact(d[2]) + "]";
-    });
-    buffer += "\n}\n";
-    out.write(buffer);
-}
 
 } // namespace
 
@@ -125,6 +65,8 @@ int run_neighbors(const std::vector<std::string>& args) {
     std::string file;
     std::string output;
     bool have_cutoff = false;
+    std::size_t nearest = 0;
+    bool quiet = false;
     TableFormat format = TableFormat::tsv;
     io::ReadOptions read_options;
     NeighborOptions options;
@@ -139,49 +81,57 @@ int run_neighbors(const std::vector<std::string>& args) {
         if (arguments.option("--cutoff")) {
             options.cutoff = arguments.real();
             have_cutoff = true;
+        } else if (arguments.option("--nearest")) {
+            nearest = arguments.whole(1, std::size_t(1) << 31);
         } else if (arguments.flag("--half")) {
             options.half = true;
         } else if (arguments.flag("--sorted")) {
             options.sorted = true;
-        } else if (arguments.option("--format")) {
-            const std::string& name = arguments.value();
-            if (name == "tsv") {
-                format = TableFormat::tsv;
-            } else if (name == "csv") {
-                format = TableFormat::csv;
-            } else if (name == "json") {
-                format = TableFormat::json;
-            } else {
-                arguments.fail("--format must be tsv, csv or json, got '" + name + "'");
-            }
+        } else if (take_format(arguments, format)) {
+        } else if (take_quiet(arguments, quiet)) {
         } else if (arguments.option("--output")) {
             output = arguments.value();
         } else if (take_max_pairs(arguments, options.max_pairs)) {
+        } else if (take_threads(arguments, options.threads)) {
         } else if (!take_input(arguments, read_options, file)) {
             arguments.unknown();
         }
     }
     require_file(arguments, file);
-    if (!have_cutoff) {
-        arguments.fail("missing --cutoff R");
+    if (nearest > 0) {
+        if (have_cutoff || options.half || options.sorted) {
+            arguments.fail("--nearest takes no --cutoff, --half or --sorted");
+        }
+    } else if (!have_cutoff) {
+        arguments.fail("missing --cutoff R or --nearest K");
+    }
+    // Progress only when the table goes to a file: on a terminal it would mix with the rows.
+    const bool show_progress = !quiet && !(output.empty() && stdout_is_terminal());
+    const io::Structure structure = io::read_structure(file, read_options);
+    if (nearest > 0) {
+        const std::size_t atoms = structure.size();
+        if (options.max_pairs != 0 && atoms > 0 && nearest > options.max_pairs / atoms) {
+            throw InvalidArgument("--nearest " + std::to_string(nearest) + " for " +
+                                  std::to_string(atoms) + " atoms lists more than --max-pairs " +
+                                  std::to_string(options.max_pairs) +
+                                  " neighbours; raise --max-pairs to allow it (0 = no limit)");
+        }
+        NearestOptions nearest_options;
+        nearest_options.threads = options.threads;
+        const NearestNeighbors result =
+            nearest_neighbors(structure.box, structure.positions, nearest, nearest_options);
+        write_text(output, [&](TextSink& sink) {
+            write_nearest(sink, result, format, file, options.threads, show_progress);
+        });
+        return 0;
     }
     // compute_neighbors() validates the options (cutoff > 0) before any work.
-    const io::Structure structure = io::read_structure(file, read_options);
     const NeighborList list = compute_neighbors(structure.box, structure.positions, options);
 
-    Output out(output);
-    switch (format) {
-    case TableFormat::tsv:
-        write_table(out, list, '\t', true);
-        break;
-    case TableFormat::csv:
-        write_table(out, list, ',', false);
-        break;
-    case TableFormat::json:
-        write_json(out, list, file, structure.size(), options);
-        break;
-    }
-    out.commit();
+    const PairTableHeader header{file, structure.size(), options.cutoff, options.half};
+    write_text(output, [&](TextSink& sink) {
+        write_pairs(sink, list, format, header, options.threads, show_progress);
+    });
     return 0;
 }
 

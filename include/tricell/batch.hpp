@@ -47,6 +47,9 @@ struct BatchColumns {
     void clear();
 };
 struct BatchWorker; // one thread's search object and scratch list (lib/batch.cpp)
+/// Rethrows the tricell::Error in flight with "structure s: " before its message, keeping its
+/// type (for the batch's front doors, which check their own per-structure arguments).
+[[noreturn]] TRICELL_API void rethrow_for_structure(std::size_t s);
 } // namespace detail
 
 class BatchList;

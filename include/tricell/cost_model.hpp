@@ -27,11 +27,14 @@
 // cell per axis and a stencil of hundreds of offsets, each its own image, and every (image, atom)
 // becomes a separate range of N atoms: the grid pays its per-range overhead and the stencil's
 // construction hundreds of times for a few pairs. The direct backend tests all N^2 pairs through
-// every image that can hold one, one pair at a time. Counted with callgrind (instructions per
-// call, issue 13): 1 and 2 atoms at rc 8-10, about 10x fewer than the dense grid; 8 atoms at
-// rc 10, 1.5x fewer; 8 atoms at rc 5, 1.2x fewer; 64 atoms, 3x more. choose_direct() takes it for
-// at most 12 atoms when the cutoff reaches past half the narrowest periodic width (or nothing is
-// periodic), where N^2 x images stays below the grid's range scans.
+// every image that can hold one, each pair only through the images its own distance allows.
+// Counted with callgrind (instructions per call, issue 13, after that per-pair pruning): 1 and
+// 2 atoms at rc 8-10, about 10x fewer than the dense grid; 8 atoms at rc 10 (cutoff 1.8 widths),
+// 1.5x fewer; 32 atoms at rc 8 (1.2 widths), 1.4x fewer; but 16 atoms at rc 6 (0.95 widths)
+// 1.15x more, 48 atoms at rc 7 (0.8 widths) 1.4x more, 64 atoms at rc 10 (0.9 widths) 1.5x
+// more. choose_direct() takes it for at most 12 atoms when the cutoff reaches past half the
+// narrowest periodic width (or nothing is periodic), and for at most 32 atoms when it reaches
+// past the whole width, where N^2 x images stays below the grid's range scans.
 #pragma once
 
 #include <cstddef>

@@ -1,6 +1,9 @@
 // Umbrella header: everything in tricell::core.
 #pragma once
 
+#include "tricell/analysis/nearest.hpp"
+#include "tricell/analysis/rdf.hpp"
+#include "tricell/analysis/shells.hpp"
 #include "tricell/batch.hpp"
 #include "tricell/box.hpp"
 #include "tricell/cell_list.hpp"

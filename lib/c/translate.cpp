@@ -112,9 +112,10 @@ const std::size_t no_offset = 0;
 template <class T> const T* data_or(const PairArray<T>& v, const T* empty) {
     return v.empty() ? empty : v.data();
 }
-} // namespace
 
-tricell_pairs to_pairs(const NeighborList& list, const Quantities& stored, bool offsets) {
+// The columns of a list or a batch (same accessors) as a view.
+template <class List>
+tricell_pairs columns_view(const List& list, const Quantities& stored, bool offsets) {
     tricell_pairs out;
     out.size = list.size();
     out.i = data_or(list.i(), &no_index);
@@ -132,6 +133,20 @@ tricell_pairs to_pairs(const NeighborList& list, const Quantities& stored, bool 
         out.atoms = list.offsets().size() - 1;
         out.offsets = list.offsets().data();
     }
+    return out;
+}
+} // namespace
+
+tricell_pairs to_pairs(const NeighborList& list, const Quantities& stored, bool offsets) {
+    return columns_view(list, stored, offsets);
+}
+
+tricell_batch_pairs to_batch_pairs(const BatchList& list, const Quantities& stored, bool offsets) {
+    tricell_batch_pairs out;
+    out.structures = list.structure_count();
+    out.pair_offsets = list.pair_offsets().empty() ? &no_offset : list.pair_offsets().data();
+    out.atom_offsets = list.atom_offsets().empty() ? &no_offset : list.atom_offsets().data();
+    out.pairs = columns_view(list, stored, offsets);
     return out;
 }
 

@@ -2,7 +2,10 @@
 // computes geometry, it only copies fields and checks what C cannot express (flags, NULLs).
 #pragma once
 
+#include <vector>
+
 #include "tricell.h"
+#include "tricell/batch.hpp"
 #include "tricell/box.hpp"
 #include "tricell/neighbor_list.hpp"
 
@@ -25,6 +28,8 @@ tricell_neighbor_options to_c_options(const NeighborOptions& options);
 /// A view of a stored list: pointers for the quantities in `stored` (and the offsets when
 /// `offsets`), NULL for the others.
 tricell_pairs to_pairs(const NeighborList& list, const Quantities& stored, bool offsets);
+/// The same for a batch's lists, with its per-structure offsets.
+tricell_batch_pairs to_batch_pairs(const BatchList& list, const Quantities& stored, bool offsets);
 
 } // namespace tricell::c_api
 
@@ -37,5 +42,13 @@ struct tricell_neighbor_search {
 struct tricell_neighbor_list {
     tricell::NeighborList list;
     tricell::Quantities stored; // what the last tricell_neighbors() asked for
+    bool sorted = false;
+};
+
+struct tricell_batch_list {
+    tricell::BatchList list;
+    std::vector<tricell::BatchStructure> structures; // of the last call, kept for their memory
+    tricell::NeighborOptions options;                // likewise
+    tricell::Quantities stored; // what the last tricell_neighbors_batch() asked for
     bool sorted = false;
 };

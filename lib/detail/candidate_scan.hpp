@@ -115,6 +115,29 @@ class CandidateScanner {
         }
     }
 
+    /// The pair (a, b) through each of shifts[0, count) (the direct backend: few atoms, many
+    /// images). The same test, term for term, as pair() for each shift.
+    void images(std::uint32_t a, std::uint32_t b, const ImageShift* shifts, std::size_t count) {
+        tests_ += count;
+        const double ax = x_[a], ay = y_[a], az = z_[a];
+        const double bx = x_[b], by = y_[b], bz = z_[b];
+        const std::uint32_t i = index_[a];
+        const int ia = image_[3 * a], ib = image_[3 * a + 1], ic = image_[3 * a + 2];
+        for (std::size_t k = 0; k < count; ++k) {
+            const ImageShift& s = shifts[k];
+            const double dx = bx - (ax - s.vx);
+            const double dy = by - (ay - s.vy);
+            const double dz = bz - (az - s.vz);
+            const double d_sq = dx * dx + dy * dy + dz * dz;
+            if (d_sq < cutoff_sq_) {
+                hit(a, b, i, s.s[0] + ia, s.s[1] + ib, s.s[2] + ic, s, dx, dy, dz, d_sq);
+            }
+        }
+    }
+
+    /// The wrapped Cartesian position of atom a (the one the tests use).
+    Eigen::Vector3d position(std::uint32_t a) const { return {x_[a], y_[a], z_[a]}; }
+
     /// Distance tests so far (for the work model's measurements).
     std::uint64_t tests() const { return tests_; }
 

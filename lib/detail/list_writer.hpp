@@ -1,5 +1,6 @@
 // The writer interface of NeighborList: how the library's own producers (the search, the
-// Verlet list) reach the columns they fill, without a friend per producer.
+// Verlet list, the shells of several cutoffs) reach the columns they fill, without a friend per
+// producer, and the one way they reorder them.
 #pragma once
 
 #include <vector>
@@ -17,5 +18,21 @@ struct ListWriter {
     static std::vector<std::size_t>& offsets(NeighborList& l) { return l.offsets_; }
     static std::vector<NeighborList>& partial(NeighborList& l) { return l.partial_; }
 };
+
+/// Reorders a column in place so that v[k] becomes old v[perm[k]], for `width` values per pair
+/// (how the sort and the shells of several cutoffs permute every column alike).
+template <class T>
+void gather(PairArray<T>& v, const std::vector<std::size_t>& perm, std::size_t width) {
+    if (v.empty()) {
+        return;
+    }
+    PairArray<T> out(v.size());
+    for (std::size_t k = 0; k < perm.size(); ++k) {
+        for (std::size_t w = 0; w < width; ++w) {
+            out[width * k + w] = v[width * perm[k] + w];
+        }
+    }
+    v.swap(out);
+}
 
 } // namespace tricell::detail

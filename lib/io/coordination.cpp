@@ -59,6 +59,7 @@ std::vector<Coordination> coordination(const Structure& structure,
     std::vector<Coordination> out(n);
     for (Coordination& c : out) {
         c.nearest = std::numeric_limits<double>::quiet_NaN();
+        c.mean = std::numeric_limits<double>::quiet_NaN();
     }
     if (n == 0) {
         return out;
@@ -99,12 +100,19 @@ std::vector<Coordination> coordination(const Structure& structure,
     neighbor_options.max_pairs = options.max_pairs;
     const NeighborList list =
         compute_neighbors(structure.box, structure.positions, neighbor_options);
+    std::vector<double> sum(n, 0.0);
     for (std::size_t p = 0; p < list.size(); ++p) {
         Coordination& c = out[list.i()[p]];
         const double d = list.distances()[p];
         ++c.count;
+        sum[list.i()[p]] += d;
         if (!(c.nearest <= d)) {
             c.nearest = d;
+        }
+    }
+    for (std::size_t k = 0; k < n; ++k) {
+        if (out[k].count > 0) {
+            out[k].mean = sum[k] / double(out[k].count);
         }
     }
     return out;

@@ -13,7 +13,8 @@
 // numbers. Without a Lattice the system is open: no axis is periodic (a pbc with a T is an
 // error) and the box is an orthogonal frame whose edges are the extent of the positions along x,
 // y and z plus 1 Angstrom, so that it is never flat. Only the first frame of a multi-frame file
-// is read. Positions keep the file order and are not wrapped.
+// is read (trajectory.cpp hands this parser one frame at a time). Positions keep the file order
+// and are not wrapped.
 #include <algorithm>
 
 #include "text.hpp"

@@ -155,14 +155,11 @@ Quantities parse_quantities(const std::string& letters) {
     return q;
 }
 
-py::object pair_columns(const NeighborList& list, const std::string& letters,
-                        const std::shared_ptr<const NeighborList>& owner) {
-    py::object base;
-    if (owner) {
-        auto* keep = new std::shared_ptr<const NeighborList>(owner);
-        base = py::capsule(
-            keep, [](void* p) { delete static_cast<std::shared_ptr<const NeighborList>*>(p); });
-    }
+namespace {
+// The columns of a list or of a batch's lists (the same accessors), views on `base` when it is
+// set, copies otherwise.
+template <class List>
+py::object columns_of(const List& list, const std::string& letters, const py::object& base) {
     const std::size_t n = list.size();
     py::tuple out(letters.size());
     for (std::size_t k = 0; k < letters.size(); ++k) {
@@ -201,6 +198,39 @@ py::object pair_columns(const NeighborList& list, const std::string& letters,
         return out[0];
     }
     return std::move(out);
+}
+
+} // namespace
+
+py::object pair_columns(const NeighborList& list, const std::string& letters,
+                        const std::shared_ptr<const NeighborList>& owner) {
+    py::object base;
+    if (owner) {
+        auto* keep = new std::shared_ptr<const NeighborList>(owner);
+        base = py::capsule(
+            keep, [](void* p) { delete static_cast<std::shared_ptr<const NeighborList>*>(p); });
+    }
+    return columns_of(list, letters, base);
+}
+
+py::tuple batch_columns(const BatchList& list, const std::string& letters) {
+    const std::vector<std::size_t>& offsets = list.pair_offsets();
+    py::array_t<std::int64_t> pair_offsets(static_cast<py::ssize_t>(offsets.size()));
+    for (std::size_t s = 0; s < offsets.size(); ++s) {
+        pair_offsets.mutable_data()[s] = static_cast<std::int64_t>(offsets[s]);
+    }
+    py::object columns = columns_of(list, letters, py::object());
+    py::tuple out(1 + letters.size());
+    out[0] = pair_offsets;
+    if (letters.size() == 1) {
+        out[1] = columns;
+    } else {
+        const py::tuple t = columns.cast<py::tuple>();
+        for (std::size_t k = 0; k < letters.size(); ++k) {
+            out[k + 1] = t[k];
+        }
+    }
+    return out;
 }
 
 } // namespace tricell::python

@@ -19,6 +19,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include <tricell/batch.hpp>
 #include <tricell/box.hpp>
 #include <tricell/neighbor_list.hpp>
 
@@ -49,5 +50,9 @@ Quantities parse_quantities(const std::string& letters);
 /// base holds `owner`; otherwise they are copies.
 py::object pair_columns(const NeighborList& list, const std::string& letters,
                         const std::shared_ptr<const NeighborList>& owner);
+
+/// The lists of a batch, always copied: a tuple of the per-structure pair offsets (int64,
+/// structures + 1) followed by the columns of `letters` over all structures.
+py::tuple batch_columns(const BatchList& list, const std::string& letters);
 
 } // namespace tricell::python

@@ -11,6 +11,7 @@ namespace py = pybind11;
 
 void bind_neighbors(py::module_& m);
 void bind_read(py::module_& m);
+void bind_analysis(py::module_& m);
 
 } // namespace tricell::python
 
@@ -30,4 +31,5 @@ PYBIND11_MODULE(_tricell, m) {
     });
     tricell::python::bind_neighbors(m);
     tricell::python::bind_read(m);
+    tricell::python::bind_analysis(m);
 }

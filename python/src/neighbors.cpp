@@ -16,6 +16,8 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include <tricell/batch.hpp>
+#include <tricell/error.hpp>
 #include <tricell/neighbor_list.hpp>
 #include <tricell/verlet.hpp>
 
@@ -24,6 +26,17 @@
 namespace tricell::python {
 
 namespace {
+
+// `value` as a sequence (a list, a tuple, an array of one more dimension), else ValueError.
+py::sequence checked_sequence(const py::handle& value, const char* name) {
+    if (!py::isinstance<py::sequence>(value) || py::isinstance<py::str>(value)) {
+        throw py::value_error(std::string(name) +
+                              " must be a sequence with one entry per "
+                              "structure (got " +
+                              py::repr(value).cast<std::string>() + ")");
+    }
+    return py::reinterpret_borrow<py::sequence>(value);
+}
 
 class PyNeighborList {
   public:
@@ -107,6 +120,55 @@ class PyNeighborList {
         return pair_columns(*list, quantities, copy ? nullptr : list);
     }
 
+    // One list per structure of a batch (compute_neighbors_batch), the NeighborList's options
+    // for all; the inputs are converted (and checked, each naming its structure) with the GIL
+    // held, the search runs without it.
+    py::tuple compute_batch(const py::handle& points, const py::handle& boxes,
+                            const py::handle& periodic, const std::string& quantities) {
+        if (per_atom_radii_ || !options_.species_cutoffs.empty()) {
+            throw py::value_error("compute_batch needs a NeighborList made with one float cutoff");
+        }
+        NeighborOptions options = options_;
+        options.quantities = parse_quantities(quantities);
+        const py::sequence xs = checked_sequence(points, "points");
+        const py::sequence hs = checked_sequence(boxes, "boxes");
+        if (hs.size() != xs.size()) {
+            throw py::value_error("boxes has " + std::to_string(hs.size()) + " entries for " +
+                                  std::to_string(xs.size()) + " structures");
+        }
+        // periodic: one bool or three for every structure, or one of those per structure.
+        const bool per_structure =
+            py::module_::import("numpy").attr("ndim")(periodic).cast<int>() == 2;
+        if (per_structure && py::len(periodic) != xs.size()) {
+            throw py::value_error("periodic has " + std::to_string(py::len(periodic)) +
+                                  " entries for " + std::to_string(xs.size()) + " structures");
+        }
+        std::vector<DoubleArray> arrays;
+        std::vector<BatchStructure> structures;
+        arrays.reserve(xs.size());
+        structures.reserve(xs.size());
+        for (std::size_t s = 0; s < xs.size(); ++s) {
+            try {
+                arrays.push_back(points_array(xs[s]));
+                const py::object pbc = per_structure ? py::object(periodic.cast<py::sequence>()[s])
+                                                     : py::reinterpret_borrow<py::object>(periodic);
+                structures.push_back(BatchStructure{
+                    box_from_rows(hs[s], pbc),
+                    PointsView(arrays.back().data(), std::size_t(arrays.back().shape(0)))});
+            } catch (const py::value_error& e) {
+                throw py::value_error("structure " + std::to_string(s) + ": " + e.what());
+            } catch (const Error&) {
+                detail::rethrow_for_structure(s);
+            }
+        }
+        {
+            py::gil_scoped_release release;
+            std::lock_guard<std::mutex> lock(mutex_);
+            compute_neighbors_batch(structures, options, batch_);
+        }
+        return batch_columns(batch_, quantities);
+    }
+
     bool full() const { return !options_.half; }
     bool sorted() const { return options_.sorted; }
     int threads() const { return options_.threads; }
@@ -138,6 +200,7 @@ class PyNeighborList {
     NeighborOptions options_;
     bool per_atom_radii_ = false;
     NeighborSearch search_;
+    BatchList batch_; // of compute_batch(), kept for its buffers
     std::vector<std::shared_ptr<NeighborList>> pool_;
     std::mutex mutex_;
 };
@@ -208,6 +271,16 @@ order of the letters of quantities: i, j (uint32), S (int32, N x 3), d (float64)
 N x 3), P (uint32, N x 2 pairs (i, j)); one letter returns one array. copy=False returns views
 of the list's own buffers instead of copies (P is always a new array); a view stays valid as
 long as it exists, and later calls never write into memory a view still refers to.)doc")
+        .def("compute_batch", &PyNeighborList::compute_batch, py::arg("points"), py::arg("boxes"),
+             py::arg("periodic") = true, py::arg("quantities") = "ijSd",
+             R"doc(
+The lists of many independent structures in one call (one cutoff for all; threads work across
+structures). points: a sequence of N_s x 3 arrays; boxes: a sequence of 3 x 3 arrays (lattice
+vectors as rows), one per structure; periodic: one bool or three for every structure, or one
+such entry per structure. Returns a tuple (offsets, *columns): offsets (int64, structures + 1)
+gives structure s the pairs offsets[s]:offsets[s + 1] of every column, and the columns are
+those of compute() (always copies) over all structures, i and j numbering the atoms of their
+own structure. Each structure gets exactly the list compute() gives it alone.)doc")
         .def_property_readonly("full", &PyNeighborList::full)
         .def_property_readonly("sorted", &PyNeighborList::sorted)
         .def_property_readonly("threads", &PyNeighborList::threads);

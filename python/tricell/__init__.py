@@ -1,8 +1,9 @@
 """tricell: periodic neighbour search in general triclinic boxes.
 
 The native part (tricell._tricell, a pybind11 module over the C++ library) provides
-NeighborList, VerletList and read(); tricell.ase and tricell.pymatgen are drop-in
-replacements for ASE's and pymatgen's neighbour-list functions built on it.
+NeighborList, VerletList, Rdf, nearest_neighbors and read(); tricell.ase and
+tricell.pymatgen are drop-in replacements for ASE's and pymatgen's neighbour-list functions
+built on it.
 
     import tricell
     nl = tricell.NeighborList(cutoff=5.0)
@@ -17,9 +18,11 @@ from typing import List, NamedTuple, Tuple
 
 import numpy as np
 
-from ._tricell import NeighborList, VerletList, _read
+from ._tricell import NeighborList, Rdf, VerletList, _read, nearest_neighbors
 
-__all__ = ["NeighborList", "VerletList", "Structure", "read"]
+__all__ = [
+    "NeighborList", "VerletList", "Rdf", "nearest_neighbors", "Structure", "read",
+]
 
 
 class Structure(NamedTuple):

@@ -106,4 +106,22 @@ inline void expect_same_pairs(const PairMap& expected, const PairMap& actual, do
     }
 }
 
+/// The first `n` entries of a C array equal a C++ array (and the sizes agree).
+template <class A, class B> void expect_same_array(const A& cxx, const B* c, std::size_t n) {
+    ASSERT_EQ(cxx.size(), n);
+    for (std::size_t k = 0; k < n; ++k) {
+        if (cxx[k] != c[k]) {
+            ADD_FAILURE() << "entry " << k << " differs: " << cxx[k] << " vs " << c[k];
+            return;
+        }
+    }
+}
+
 } // namespace tricell::testing
+
+/// A C call returns `status` and leaves `message` as this thread's message.
+#define EXPECT_STATUS(call, status, message)                                                       \
+    do {                                                                                           \
+        EXPECT_EQ((call), (status));                                                               \
+        EXPECT_EQ(std::string(tricell_last_error()), std::string(message));                        \
+    } while (0)

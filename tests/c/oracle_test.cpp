@@ -29,16 +29,6 @@ constexpr std::uint64_t case_count = TRICELL_C_CASES;
 constexpr std::uint64_t case_count = 600;
 #endif
 
-template <class A, class B> void expect_same_array(const A& cxx, const B* c, std::size_t n) {
-    ASSERT_EQ(cxx.size(), n);
-    for (std::size_t k = 0; k < n; ++k) {
-        if (cxx[k] != c[k]) {
-            ADD_FAILURE() << "entry " << k << " differs: " << cxx[k] << " vs " << c[k];
-            return;
-        }
-    }
-}
-
 // Every stored array of the C view equals the C++ list's, in order.
 void expect_same_list(const tricell::NeighborList& cxx, const tricell_pairs& c,
                       const tricell::Quantities& q, bool offsets) {

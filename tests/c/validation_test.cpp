@@ -32,12 +32,6 @@ std::string cxx_message(const std::function<void()>& call) {
     return "";
 }
 
-#define EXPECT_STATUS(call, status, message)                                                       \
-    do {                                                                                           \
-        EXPECT_EQ((call), (status));                                                               \
-        EXPECT_EQ(std::string(tricell_last_error()), std::string(message));                        \
-    } while (0)
-
 const double cube_rows[9] = {4, 0, 0, 0, 4, 0, 0, 0, 4};
 const int all[3] = {1, 1, 1};
 

@@ -7,7 +7,9 @@
 // command wrote removed after it), with standard output sent to /dev/null. So that every input
 // stays small and fast, the harness sets --max-pairs 100000 itself and skips inputs that name a
 // path outside the scratch directory ('/' in an argument), override --max-pairs, or ask for
-// more than 3 bench repeats or 8 threads.
+// more than 3 bench repeats, 8 threads or 100000 RDF bins (--max-pairs bounds the pairs of rdf
+// and of neighbors --nearest too). Plots (--plot) are written into the scratch directory and
+// removed like any other output.
 //
 // What counts as a failure: a crash, a sanitizer report, a hang or a large allocation, an
 // exception escaping run(), or an exit status other than 0, 1 or 2.
@@ -76,7 +78,8 @@ void remove_others() {
     }
 }
 
-// A real number > limit, for the --repeat and --threads guards (strtod as the CLI reads it).
+// A real number > limit, for the --repeat, --threads and --bins guards (strtod as the CLI reads
+// it).
 bool above(const std::string& value, double limit) {
     char* end = nullptr;
     const double x = std::strtod(value.c_str(), &end);
@@ -91,7 +94,8 @@ bool acceptable(const std::vector<std::string>& args) {
             arg.find('\0') != std::string::npos) {
             return false;
         }
-        for (const auto& [option, limit] : {std::pair{"--repeat", 3.0}, {"--threads", 8.0}}) {
+        for (const auto& [option, limit] :
+             {std::pair{"--repeat", 3.0}, {"--threads", 8.0}, {"--bins", 1e5}}) {
             const std::string name = option;
             if ((arg == name && above(next, limit)) ||
                 (arg.rfind(name + "=", 0) == 0 && above(arg.substr(name.size() + 1), limit))) {
@@ -147,7 +151,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         return -1; // not added to the corpus
     }
     if (!args.empty() && (args[0] == "neighbors" || args[0] == "neighbours" ||
-                          args[0] == "coordination" || args[0] == "bench")) {
+                          args[0] == "coordination" || args[0] == "bench" || args[0] == "rdf")) {
         args.insert(args.begin() + 1, "--max-pairs=100000");
     }
     for (const auto& [name, text] : files) {

@@ -7,13 +7,18 @@
 #include <sys/wait.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <set>
 #include <sstream>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -187,8 +192,108 @@ TEST_F(Cli, Coordination) {
                           "coordination_quartz_bonds.tsv");
 }
 
+TEST_F(Cli, CoordinationSummary) {
+    expect_success_golden(run("coordination quartz.cif --bond Si-O=1.7 --bond O-O=2.7 --summary"),
+                          "coordination_quartz_summary.tsv");
+}
+
+// The k nearest neighbours, in every format.
+TEST_F(Cli, NeighborsNearest) {
+    expect_success_golden(run("neighbors quartz.cif --nearest 5"), "nearest_quartz.tsv");
+    expect_success_golden(run("neighbors si.vasp --nearest 20 --format csv"), "nearest_si.csv");
+    expect_success_golden(run("neighbors water.xyz --nearest 2 --format json"),
+                          "nearest_water.json");
+}
+
+// The k nearest are the k shortest entries of the full list at a cutoff that holds more than
+// k per atom: each listed (j, S) is in the list with the same distance (to rounding: the two
+// searches may round the last bit differently), nearest first, and no entry left out is
+// shorter than the k-th.
+TEST_F(Cli, NeighborsNearestAgreesWithTheCutoffList) {
+    const std::size_t k = 7, atoms = 9;
+    const Result nearest = run("neighbors quartz.cif --nearest 7");
+    const Result all = run("neighbors quartz.cif --cutoff 4");
+    ASSERT_EQ(nearest.status, 0);
+    ASSERT_EQ(all.status, 0);
+    using Key = std::tuple<long, long, long, long, long>; // i, j, S
+    const auto rows = [](const std::string& text) {
+        std::vector<std::pair<Key, double>> out;
+        std::istringstream lines(text);
+        std::string line;
+        std::getline(lines, line);
+        while (std::getline(lines, line)) {
+            std::istringstream f(line);
+            long i, j, a, b, c;
+            double d;
+            f >> i >> j >> a >> b >> c >> d;
+            out.emplace_back(Key{i, j, a, b, c}, d);
+        }
+        return out;
+    };
+    std::map<Key, double> listed;
+    std::vector<std::size_t> per_atom(atoms, 0);
+    for (const auto& [key, d] : rows(all.out)) {
+        listed[key] = d;
+        ++per_atom[std::size_t(std::get<0>(key))];
+    }
+    const auto chosen = rows(nearest.out);
+    ASSERT_EQ(chosen.size(), atoms * k);
+    std::set<Key> taken;
+    for (std::size_t e = 0; e < chosen.size(); ++e) {
+        const auto& [key, d] = chosen[e];
+        SCOPED_TRACE(e);
+        EXPECT_EQ(std::size_t(std::get<0>(key)), e / k);
+        ASSERT_EQ(listed.count(key), 1u);
+        EXPECT_NEAR(listed[key], d, 1e-12);
+        if (e % k > 0) {
+            EXPECT_GE(d, chosen[e - 1].second);
+        }
+        taken.insert(key);
+    }
+    for (const auto& [key, d] : listed) {
+        const std::size_t i = std::size_t(std::get<0>(key));
+        ASSERT_GT(per_atom[i], k); // the cutoff holds more than k: the k-th is inside
+        if (taken.count(key) == 0) {
+            EXPECT_GE(d, chosen[i * k + k - 1].second - 1e-12);
+        }
+    }
+}
+
+// g(r) over the frames of the bundled argon trajectory, total and partial, in every format.
+TEST_F(Cli, Rdf) {
+    expect_success_golden(run("rdf ../../../examples/data/argon.xyz --rmax 10 --bins 20"),
+                          "rdf_argon.tsv");
+    expect_success_golden(run("rdf ../../../examples/data/argon.xyz --rmax 6 --bins 6 --pair "
+                              "Ar-Ar --format json --threads 2"),
+                          "rdf_argon.json");
+    expect_success_golden(run("rdf quartz.cif --rmax 4 --bins 8 --pair Si-O --pair O-O --format "
+                              "csv"),
+                          "rdf_quartz.csv");
+}
+
+// rmax beyond the cell: with every image, g(r) of a crystal keeps its peaks and n(r) keeps
+// growing like the volume (ASE refuses rmax above half the cell height here).
+TEST_F(Cli, RdfBeyondTheCell) {
+    const Result r = run("rdf si.vasp --rmax 12 --bins 24");
+    ASSERT_EQ(r.status, 0) << r.err;
+    std::istringstream lines(r.out);
+    std::string line;
+    std::getline(lines, line);
+    EXPECT_EQ(line, "# r g n");
+    double last_n = -1, r_value = 0, g = 0, n = 0;
+    std::size_t rows = 0;
+    while (lines >> r_value >> g >> n) {
+        EXPECT_GE(n, last_n);
+        last_n = n;
+        ++rows;
+    }
+    EXPECT_EQ(rows, 24u);
+    EXPECT_GT(last_n, 100); // about 4/3 pi 12^3 * 8 / 5.43^3 = 360 neighbours within 12 A
+}
+
 TEST_F(Cli, Help) {
     expect_success_golden(run("--help"), "help.txt");
+    expect_success_golden(run("rdf --help"), "help_rdf.txt");
     expect_success_golden(run("neighbors --help"), "help_neighbors.txt");
     expect_success_golden(run("info -h"), "help_info.txt");
     expect_success_golden(run("coordination --help"), "help_coordination.txt");
@@ -214,10 +319,13 @@ TEST_F(Cli, NeighborsTsvRealsReadBackExactlyAndMatchTheirVectors) {
         ASSERT_EQ(f.size(), 9u) << line;
         double real[4];
         for (int k = 0; k < 4; ++k) {
-            real[k] = std::strtod(f[5 + std::size_t(k)].c_str(), nullptr);
+            // The shortest text of the double it reads back as (to_chars, general format).
+            const std::string& text = f[5 + std::size_t(k)];
+            real[k] = std::strtod(text.c_str(), nullptr);
             char again[32];
-            std::snprintf(again, sizeof again, "%.17g", real[k]);
-            EXPECT_EQ(f[5 + std::size_t(k)], again);
+            *std::to_chars(again, again + sizeof again, real[k], std::chars_format::general).ptr =
+                '\0';
+            EXPECT_EQ(text, again);
         }
         EXPECT_NEAR(std::sqrt(real[1] * real[1] + real[2] * real[2] + real[3] * real[3]), real[0],
                     1e-12);
@@ -225,6 +333,24 @@ TEST_F(Cli, NeighborsTsvRealsReadBackExactlyAndMatchTheirVectors) {
         ++pairs;
     }
     EXPECT_GT(pairs, 50u);
+}
+
+// Tables formatted on several threads (blocks of 32768 rows) are the same text as on one.
+TEST_F(Cli, ThreadsNeverChangeTheText) {
+    const Result rows = run("neighbors si.vasp --cutoff 80 --half --format csv");
+    ASSERT_GT(std::count(rows.out.begin(), rows.out.end(), '\n'), 2 * 32768); // several blocks
+    for (const std::string command :
+         {"neighbors si.vasp --cutoff 80 --sorted", "neighbors si.vasp --cutoff 80 --format json",
+          "neighbors si.vasp --cutoff 80 --half --format csv",
+          "neighbors quartz.cif --nearest 9000 --format json"}) {
+        SCOPED_TRACE(command);
+        const Result one = run(command + " --threads 1");
+        ASSERT_EQ(one.status, 0) << one.err;
+        for (const char* threads : {"2", "3", "0"}) {
+            SCOPED_TRACE(threads);
+            EXPECT_TRUE(run(command + " --threads " + threads).out == one.out);
+        }
+    }
 }
 
 // ---- malformed inputs ---------------------------------------------------------------------
@@ -292,12 +418,12 @@ struct BadCommand {
 
 const BadCommand bad_commands[] = {
     {"frobnicate x.cif", 2,
-     "tricell: unknown command 'frobnicate', expected neighbors, info, coordination or bench (see "
-     "tricell --help)\n"},
+     "tricell: unknown command 'frobnicate', expected neighbors, info, coordination, rdf or bench "
+     "(see tricell --help)\n"},
     {"neighbors --cutoff 3", 2,
      "tricell: neighbors: missing FILE (see tricell neighbors --help)\n"},
     {"neighbors quartz.cif", 2,
-     "tricell: neighbors: missing --cutoff R (see tricell neighbors --help)\n"},
+     "tricell: neighbors: missing --cutoff R or --nearest K (see tricell neighbors --help)\n"},
     {"neighbors quartz.cif --cutoff", 2,
      "tricell: neighbors: --cutoff needs a value (see tricell neighbors --help)\n"},
     {"neighbors quartz.cif --cutoff abc", 2,
@@ -334,6 +460,39 @@ const BadCommand bad_commands[] = {
      "tricell coordination --help)\n"},
     {"bench quartz.cif --cutoff 3 --max-pairs=", 2,
      "tricell: bench: --max-pairs needs a value (see tricell bench --help)\n"},
+    {"neighbors quartz.cif --nearest 3 --cutoff 2", 2,
+     "tricell: neighbors: --nearest takes no --cutoff, --half or --sorted (see tricell neighbors "
+     "--help)\n"},
+    {"neighbors quartz.cif --nearest 0", 2,
+     "tricell: neighbors: --nearest must be a whole number in [1, 2147483648], got '0' (see "
+     "tricell neighbors --help)\n"},
+    {"neighbors quartz.cif --cutoff 3 --threads 2.5", 2,
+     "tricell: neighbors: --threads must be a whole number in [0, 1024], got '2.5' (see tricell "
+     "neighbors --help)\n"},
+    {"rdf quartz.cif --bins 10", 2, "tricell: rdf: missing --rmax R (see tricell rdf --help)\n"},
+    {"rdf quartz.cif --rmax 3", 2, "tricell: rdf: missing --bins N (see tricell rdf --help)\n"},
+    {"rdf --rmax 3 --bins 3", 2, "tricell: rdf: missing FILE (see tricell rdf --help)\n"},
+    {"rdf quartz.cif --rmax 3 --bins 0", 2,
+     "tricell: rdf: --bins must be a whole number in [1, 100000000], got '0' (see tricell rdf "
+     "--help)\n"},
+    {"rdf quartz.cif --rmax 3 --bins 10 --pair SiO", 2,
+     "tricell: rdf: --pair expects two species A-B such as O-H, got 'SiO' (see tricell rdf "
+     "--help)\n"},
+    {"rdf quartz.cif --rmax 3 --bins 10 --plot g.pdf", 2,
+     "tricell: rdf: --plot: cannot tell the image format of 'g.pdf', expected a name ending in "
+     ".svg or .png (see tricell rdf --help)\n"},
+    {"coordination quartz.cif --cutoff 2 --plot histogram", 2,
+     "tricell: coordination: --plot: cannot tell the image format of 'histogram', expected a "
+     "name ending in .svg or .png (see tricell coordination --help)\n"},
+    {"rdf quartz.cif --rmax 3 --bins 10 --pair Si-Qq", 1,
+     "tricell: --pair Si-Qq: no atom of species 'Qq' in quartz.cif (species: Si, O)\n"},
+    {"rdf quartz.cif --rmax -3 --bins 10", 1, "tricell: --rmax must be finite and > 0 (got -3)\n"},
+    {"rdf water.xyz --rmax 3 --bins 10", 1,
+     "tricell: water.xyz (frame 0): Rdf: axis a of the frame is not periodic; g(r) is normalised "
+     "by the cell volume, which an open axis does not define\n"},
+    {"rdf truncated.cif --rmax 3 --bins 10", 1,
+     "tricell: truncated.cif:43: incomplete loop row: the loop of _atom_site_label has 7 tags but "
+     "its last row has 4 values (truncated file or missing value?) (frame 0)\n"},
     {"neighbors quartz.cif --cutoff -1", 1, "tricell: cutoff must be > 0 (got -1)\n"},
     {"neighbors quartz.cif --cutoff 0", 1, "tricell: cutoff must be > 0 (got 0)\n"},
     {"info quartz.cif --symprec -1", 1, "tricell: symprec must be > 0 (got -1)\n"},
@@ -353,19 +512,36 @@ TEST_F(Cli, UsageErrorsExit2AndValueErrorsExit1) {
     }
 }
 
-// A pair limit refuses the list before it is computed, and names the limit; 0 lifts it.
-TEST_F(Cli, MaxPairsRefusesLargerListsWithStatus1) {
-    for (const char* command : {"neighbors", "coordination", "bench"}) {
+// A pair limit refuses the search before it runs, in the command's words: the message names
+// --max-pairs (not the library's NeighborOptions::max_pairs); 0 lifts it.
+TEST_F(Cli, MaxPairsRefusesLargerSearchesWithStatus1) {
+    for (const std::string command :
+         {"neighbors quartz.cif --cutoff 3", "coordination quartz.cif --cutoff 3",
+          "bench quartz.cif --cutoff 3", "rdf quartz.cif --rmax 3 --bins 10",
+          "neighbors quartz.cif --nearest 2"}) {
         SCOPED_TRACE(command);
-        const Result refused = run(std::string(command) + " quartz.cif --cutoff 3 --max-pairs 10");
+        const Result refused = run(command + " --max-pairs 10");
         EXPECT_EQ(refused.status, 1);
         EXPECT_EQ(refused.out, "");
-        EXPECT_NE(refused.err.find("max_pairs = 10"), std::string::npos) << refused.err;
+        EXPECT_NE(refused.err.find("more than --max-pairs 10"), std::string::npos) << refused.err;
+        EXPECT_NE(refused.err.find("; raise --max-pairs to allow it (0 = no limit)\n"),
+                  std::string::npos)
+            << refused.err;
+        EXPECT_EQ(refused.err.find("max_pairs"), std::string::npos) << refused.err;
         EXPECT_EQ(std::count(refused.err.begin(), refused.err.end(), '\n'), 1);
+        EXPECT_EQ(run(command + " --max-pairs 0").status, 0);
+        EXPECT_EQ(run(command + " --max-pairs 1000").status, 0);
     }
-    EXPECT_EQ(run("neighbors quartz.cif --cutoff 3 --max-pairs 1000").status, 0);
-    EXPECT_EQ(run("coordination quartz.cif --cutoff 3 --max-pairs 0").status, 0);
-    EXPECT_EQ(run("bench quartz.cif --cutoff 3 --max-pairs 0 --repeat 1").status, 0);
+    // The default limit stops an absurd request before it runs (these would take hours).
+    for (const std::string command :
+         {"neighbors quartz.cif --cutoff 1000", "rdf quartz.cif --rmax 1000 --bins 10",
+          "neighbors quartz.cif --nearest 100000000"}) {
+        SCOPED_TRACE(command);
+        const Result refused = run(command);
+        EXPECT_EQ(refused.status, 1);
+        EXPECT_NE(refused.err.find("more than --max-pairs 500000000"), std::string::npos)
+            << refused.err;
+    }
 }
 
 TEST_F(Cli, NoArgumentsPrintsUsageAndExits2) {
@@ -385,6 +561,58 @@ TEST_F(Cli, AFailedWriteToStandardOutputIsAnError) {
     EXPECT_EQ(WEXITSTATUS(status), 1);
     EXPECT_EQ(tricell::test::read_text(err),
               "tricell: cannot write to standard output (No space left on device)\n");
+}
+
+// ---- --plot -------------------------------------------------------------------------------
+
+// Width and height from a PNG's IHDR chunk (after the 8-byte signature, length and type).
+std::pair<unsigned, unsigned> png_size(const std::string& png) {
+    const auto word = [&](std::size_t at) {
+        unsigned v = 0;
+        for (std::size_t k = 0; k < 4; ++k) {
+            v = v << 8 | static_cast<unsigned char>(png[at + k]);
+        }
+        return v;
+    };
+    return {word(16), word(20)};
+}
+
+TEST_F(Cli, PlotsAreWrittenAsPngOrSvg) {
+    const std::string dir = output_dir("plots");
+    Result r =
+        run("rdf ../../../examples/data/argon.xyz --rmax 8 --bins 40 --plot " + dir + "/g.png");
+    EXPECT_EQ(r.status, 0) << r.err;
+    const std::string png = tricell::test::read_text(dir + "/g.png");
+    ASSERT_GT(png.size(), 24u);
+    EXPECT_EQ(png.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+    EXPECT_EQ(png.substr(12, 4), "IHDR");
+    EXPECT_EQ(png_size(png), std::make_pair(640u, 480u));
+    EXPECT_EQ(r.out.rfind("# r g n\n", 0), 0u); // the table still goes to standard output
+
+    r = run("coordination quartz.cif --cutoff 2 --plot " + dir + "/cn.svg");
+    EXPECT_EQ(r.status, 0) << r.err;
+    const std::string svg = tricell::test::read_text(dir + "/cn.svg");
+    EXPECT_EQ(svg.rfind("<?xml", 0), 0u);
+    EXPECT_NE(svg.find("width=\"640pt\" height=\"480pt\""), std::string::npos);
+    EXPECT_NE(svg.find("<path"), std::string::npos);
+    EXPECT_EQ(listing(dir), (std::vector<std::string>{"cn.svg", "g.png"}));
+}
+
+TEST_F(Cli, PlotLeavesNothingBehindOnError) {
+    const std::string dir = output_dir("plot-error");
+    for (const std::string args :
+         {"rdf truncated.cif --rmax 3 --bins 3", "rdf quartz.cif --rmax 3 --bins 3 --pair Si-Qq",
+          "coordination quartz.cif --cutoff -1"}) {
+        SCOPED_TRACE(args);
+        const Result r = run(args + " --plot " + dir + "/plot.png");
+        EXPECT_EQ(r.status, 1);
+        EXPECT_TRUE(listing(dir).empty());
+    }
+    const Result r = run("rdf quartz.cif --rmax 3 --bins 3 --plot " + dir + "/no/such/g.svg");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_EQ(r.err, "tricell: cannot create a temporary file for " + dir +
+                         "/no/such/g.svg (No such file or directory)\n");
+    EXPECT_EQ(r.out, "");
 }
 
 // ---- --output -----------------------------------------------------------------------------
@@ -421,7 +649,9 @@ TEST_F(Cli, OutputLeavesNothingBehindOnError) {
     const std::string dir = output_dir("error");
     for (const std::string args :
          {"neighbors truncated.cif --cutoff 3", "neighbors empty.cif --cutoff 3",
-          "neighbors quartz.cif --cutoff -1", "neighbors quartz.cif --cutoff 3 --format xml"}) {
+          "neighbors quartz.cif --cutoff -1", "neighbors quartz.cif --cutoff 3 --format xml",
+          "neighbors quartz.cif --nearest 3 --max-pairs 5", "rdf truncated.cif --rmax 3 --bins 3",
+          "rdf quartz.cif --rmax 3 --bins 3 --pair O-Qq"}) {
         SCOPED_TRACE(args);
         const Result r = run(args + " --output " + dir + "/pairs.tsv");
         EXPECT_NE(r.status, 0);

@@ -1,13 +1,18 @@
 // Coordination numbers with one cutoff and with per-element-pair cutoffs.
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
 #include <tricell/error.hpp>
 #include <tricell/io/coordination.hpp>
 
+#include "../support/brute_force.hpp"
 #include "../support/expect_throw_msg.hpp"
+#include "../support/random_systems.hpp"
 #include "support/fixtures.hpp"
 
 namespace {
@@ -81,6 +86,56 @@ TEST(Coordination, AtomWithoutNeighboursHasNanNearest) {
     const auto c = tricell::io::coordination(s, options);
     EXPECT_EQ(c[0].count, 0u);
     EXPECT_TRUE(std::isnan(c[0].nearest));
+    EXPECT_TRUE(std::isnan(c[0].mean));
+}
+
+// Count, shortest and mean bond of every atom against the brute-force list, over random boxes
+// (skewed, mixed periodicity, cutoffs beyond the cell, atoms far outside) with one cutoff for
+// every pair. Distances agree to rounding (1e-10 of the largest coordinate); an atom with a
+// pair that close to the cutoff may count it or not, and is skipped.
+TEST(Coordination, MatchesBruteForceOnRandomSystems) {
+    for (std::uint64_t seed = 1; seed <= 60; ++seed) {
+        SCOPED_TRACE(seed);
+        const tricell::testing::RandomSystem system = tricell::testing::random_system(seed);
+        tricell::io::Structure s;
+        s.box = system.box();
+        s.positions = system.positions;
+        s.species.assign(s.positions.size(), "Ar");
+        s.labels.assign(s.positions.size(), "Ar");
+        s.occupancies.assign(s.positions.size(), 1.0);
+        CoordinationOptions options;
+        options.cutoff = system.cutoff;
+        const auto c = tricell::io::coordination(s, options);
+        const auto pairs =
+            tricell::testing::brute_force_pairs(s.box, system.positions, system.cutoff);
+        double tol = 1e-10;
+        for (const Eigen::Vector3d& x : s.positions) {
+            tol = std::max(tol, 1e-10 * x.cwiseAbs().maxCoeff());
+        }
+        std::vector<std::size_t> count(s.size(), 0);
+        std::vector<double> sum(s.size(), 0.0), nearest(s.size(), INFINITY);
+        std::vector<bool> borderline(s.size(), false);
+        for (const auto& [key, value] : pairs) {
+            const std::size_t i = std::get<0>(key);
+            borderline[i] = borderline[i] || system.cutoff - value.distance <= tol;
+            ++count[i];
+            sum[i] += value.distance;
+            nearest[i] = std::min(nearest[i], value.distance);
+        }
+        ASSERT_EQ(c.size(), s.size());
+        for (std::size_t k = 0; k < s.size(); ++k) {
+            if (borderline[k]) {
+                continue;
+            }
+            EXPECT_EQ(c[k].count, count[k]) << k;
+            if (count[k] == 0) {
+                EXPECT_TRUE(std::isnan(c[k].nearest) && std::isnan(c[k].mean)) << k;
+            } else {
+                EXPECT_NEAR(c[k].nearest, nearest[k], tol) << k;
+                EXPECT_NEAR(c[k].mean, sum[k] / double(count[k]), tol) << k;
+            }
+        }
+    }
 }
 
 TEST(Coordination, Errors) {

@@ -8,6 +8,7 @@
 
 #include "support/brute_force.hpp"
 #include "support/expect_throw_msg.hpp"
+#include "support/random_boxes.hpp"
 #include "tricell/detail/distance_kernel.hpp"
 #include "tricell/error.hpp"
 #include "tricell/neighbor_list.hpp"
@@ -15,6 +16,7 @@
 using tricell::Box;
 using tricell::NeighborList;
 using tricell::NeighborOptions;
+using tricell::SearchBackend;
 using tricell::Shift;
 
 namespace {
@@ -211,7 +213,11 @@ TEST(NeighborList, RejectsBadVariableCutoffsNamingThem) {
     EXPECT_THROW_MSG(
         tricell::parse_backend("fast"), tricell::InvalidArgument,
         "unknown search backend 'fast' (expected auto, dense, linked, hash, octree or direct)");
-    EXPECT_EQ(tricell::parse_backend("hash"), tricell::SearchBackend::hash);
+    for (const SearchBackend b :
+         {SearchBackend::automatic, SearchBackend::dense, SearchBackend::linked,
+          SearchBackend::hash, SearchBackend::octree, SearchBackend::direct}) {
+        EXPECT_EQ(tricell::parse_backend(tricell::backend_name(b)), b);
+    }
 }
 
 TEST(NeighborList, ZeroRadiiOrAbsentSpeciesGiveNoPairs) {
@@ -480,4 +486,76 @@ TEST(NeighborSearch, AutoTakesTheDenseGridForAUniformLiquid) {
     search.build(box, x, with_cutoff(5));
     EXPECT_EQ(search.info().backend, tricell::SearchBackend::dense);
     EXPECT_FALSE(search.info().reduced_frame);
+}
+
+// The direct backend keeps its images from one build to the next while the frame, periodicity,
+// radius and (rounded) atom spread stay the same. A search reused along a random walk that
+// changes one of them at a time (or nothing) must still give, every time, exactly the dense
+// grid's sorted list and the brute-force pairs.
+TEST(DirectBackend, ReusedSearchFollowsEveryChangeOfBoxRadiusAndAtoms) {
+    std::mt19937_64 rng(13);
+    std::uniform_real_distribution<double> unit(0, 1);
+    Eigen::Matrix3d h = tricell::testing::random_box_matrix(rng, 2, 4, 0.5);
+    tricell::Periodicity pbc = tricell::Periodicity::all();
+    double cutoff = 5;
+    std::vector<Eigen::Vector3d> x(4);
+    for (auto& r : x) {
+        r = h * Eigen::Vector3d(unit(rng), unit(rng), unit(rng));
+    }
+    NeighborOptions direct;
+    direct.backend = SearchBackend::direct;
+    direct.sorted = true;
+    direct.quantities.vectors = true;
+    NeighborOptions dense = direct;
+    dense.backend = SearchBackend::dense;
+    tricell::NeighborSearch search;
+    NeighborList list, reference;
+    std::size_t pairs = 0;
+    for (int step = 0; step < 300; ++step) {
+        SCOPED_TRACE(step);
+        switch (rng() % 6) {
+        case 0:
+            h = tricell::testing::random_box_matrix(rng, 2, 4, 0.5);
+            break;
+        case 1:
+            pbc.axes[rng() % 3] = !pbc.axes[rng() % 3];
+            break;
+        case 2:
+            cutoff = 2 + 5 * unit(rng);
+            break;
+        case 3: // one atom moved a little (the rounded spread usually unchanged)
+            x[rng() % x.size()] += 0.05 * Eigen::Vector3d(unit(rng), unit(rng), unit(rng));
+            break;
+        case 4: // one atom moved far (the spread changes)
+            x[rng() % x.size()] = h * Eigen::Vector3d(3 * unit(rng), unit(rng), unit(rng));
+            break;
+        default: // nothing changes
+            break;
+        }
+        direct.cutoff = dense.cutoff = cutoff;
+        const Box box = Box::from_columns(h, pbc);
+        search.build(box, x, direct);
+        search.compute(list);
+        tricell::compute_neighbors(box, x, dense, reference);
+        ASSERT_EQ(list.size(), reference.size());
+        EXPECT_EQ(list.i(), reference.i());
+        EXPECT_EQ(list.j(), reference.j());
+        EXPECT_EQ(list.shifts(), reference.shifts());
+        EXPECT_EQ(list.distances(), reference.distances());
+        EXPECT_EQ(list.vectors(), reference.vectors());
+        const auto expected = tricell::testing::brute_force_pairs(box, x, cutoff);
+        const auto found = tricell::testing::to_map(list);
+        for (const auto& [key, value] : expected) {
+            if (std::abs(value.distance - cutoff) > 1e-9 && found.count(key) == 0) {
+                ADD_FAILURE() << "missing pair at distance " << value.distance;
+            }
+        }
+        for (const auto& [key, value] : found) {
+            if (std::abs(value.distance - cutoff) > 1e-9 && expected.count(key) == 0) {
+                ADD_FAILURE() << "extra pair at distance " << value.distance;
+            }
+        }
+        pairs += list.size();
+    }
+    EXPECT_GT(pairs, 10000u);
 }

@@ -45,6 +45,8 @@ struct Coordination {
     std::size_t count = 0;
     /// Shortest counted bond, NaN when there is none.
     double nearest = 0;
+    /// Mean length of the counted bonds, NaN when there is none.
+    double mean = 0;
 };
 
 /// One entry per atom, in the structure's order.

@@ -4,3 +4,4 @@
 #include "tricell/io/coordination.hpp"
 #include "tricell/io/structure.hpp"
 #include "tricell/io/symmetry.hpp"
+#include "tricell/io/trajectory.hpp"

@@ -20,7 +20,8 @@
 //   (default T T T with a Lattice), Properties=species:S:1:pos:R:3:... (the default when
 //   absent). Without Lattice the system is open: all axes non-periodic, and the box is the
 //   orthogonal frame with edges (extent of the positions along x, y, z) + 1 Angstrom. Only the
-//   first frame is read. Positions not wrapped.
+//   first frame is read (io::FrameReader, trajectory.hpp, reads every frame). Positions not
+//   wrapped.
 //
 // Species are element symbols in canonical case ("Si"); POSCAR POTCAR suffixes ("Fe_pv") and
 // CIF charges ("Fe2+") are dropped. Every error is a tricell::ParseError whose what() reads
