@@ -548,21 +548,18 @@ void NeighborSearch::compute(NeighborList& out) const {
                        ? static_cast<std::size_t>(expected * 1.1) + 1024
                        : std::size_t(1) << 24;
         };
-        std::vector<double> expected(units);
+        auto expected_in = [&](std::size_t u) {
+            return half_factor *
+                   expected_pairs(occupancy.atoms[u], occupancy.volume[u] * box_volume, sphere);
+        };
         double total = 0;
         for (std::size_t u = 0; u < units; ++u) {
-            expected[u] = half_factor * expected_pairs(occupancy.atoms[u],
-                                                       occupancy.volume[u] * box_volume, sphere);
-            total += expected[u];
+            total += expected_in(u);
         }
-        // One thread writes a small list straight into `out` (where it stays in cache for the
-        // caller). A large one goes through the batches even on one thread: each batch is scanned
-        // into columns that stay in L2 and streamed out with non-temporal stores, which skips
-        // reading every output line from memory before overwriting it. Measured on one core
-        // (in-process, interleaved, loaded machine): random triclinic 1e5 atoms 5-12% faster,
-        // diamond 16x16x16 the same.
-        constexpr double streamed_pairs = 1 << 18;
-        if (threads == 1 && !(total >= streamed_pairs)) {
+        // One thread writes straight into `out`. (Batches streamed out with non-temporal stores
+        // were tried on one thread for large lists too, and dropped: interleaved in-process A/B,
+        // random triclinic 1e5 atoms 2-9% slower than storing directly, diamond the same.)
+        if (threads == 1) {
             detail::PairSink sink(columns_of(out), s.options.max_pairs, room(total));
             detail::CandidateScanner scan(s.atoms, s.h, s.cutoff_sq, s.rule, s.options.half,
                                           s.to_caller, s.reduced_frame, sink);
@@ -575,9 +572,10 @@ void NeighborSearch::compute(NeighborList& out) const {
             // 230 KB) stay in the core's L2 until they are copied out.
             constexpr double batch_pairs = 8192;
             constexpr std::size_t max_pending = 16; // scanned batches a thread holds, at most
-            std::vector<double> work(units);
+            std::vector<double> work(units), expected(units);
             for (std::size_t u = 0; u < units; ++u) {
                 work[u] = occupancy_work(occupancy.atoms[u], occupancy.neighbours);
+                expected[u] = expected_in(u);
             }
             const double wanted = std::isfinite(total) ? std::ceil(total / batch_pairs) : 1e9;
             const auto batches_wanted =

@@ -252,9 +252,10 @@ TEST(NeighborList, RejectsPositionTooFarToWrap) {
 }
 
 TEST(NeighborList, BatchedOutputEqualsBruteForceForAnyThreadCount) {
-    // The batched in-place output (lib/detail/ordered_output.hpp): a list above 2^18 expected
-    // pairs, which takes it even on one thread, and clustered atoms whose list is several times
-    // the uniform-density estimate, so the final columns must grow while batches are copied in.
+    // The batched in-place output of 2 to 4 threads (lib/detail/ordered_output.hpp) against one
+    // thread storing directly and against brute force: a list of about 294000 pairs, and
+    // clustered atoms whose list is several times the per-cell estimate, so the final columns
+    // must grow while batches are copied in.
     // The large lists reuse one list object (its per-thread batch columns too); the clustered
     // ones start from an empty list each time, so that no capacity is left from before.
     NeighborList reused;
