@@ -20,6 +20,8 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <limits>
 #include <memory>
@@ -192,7 +194,7 @@ void make_box(FuzzedDataProvider& in, State& state) {
         }
         return;
     }
-    if (null_matrix || null_flags || null_box) {
+    if ((null_matrix && kind < 2) || null_flags || null_box) {
         broken("a box constructor accepted a NULL pointer");
     }
     for (int k = 0; k < 3; ++k) {
@@ -349,6 +351,34 @@ tricell_neighbor_options neighbor_options(FuzzedDataProvider& in, std::size_t n,
         break;
     }
     return o;
+}
+
+// For reading a crash: TRICELL_FUZZ_VERBOSE=1 c_api_fuzzer crash-... prints each search call.
+const bool verbose = std::getenv("TRICELL_FUZZ_VERBOSE") != nullptr;
+
+void print_call(const tricell_box& box, const std::vector<Eigen::Vector3d>& x,
+                const tricell_neighbor_options& o) {
+    std::fprintf(stderr, "box periodic %d %d %d, rows\n", box.periodic[0], box.periodic[1],
+                 box.periodic[2]);
+    for (const auto& row : box.vectors) {
+        std::fprintf(stderr, "  %.17g %.17g %.17g\n", row[0], row[1], row[2]);
+    }
+    for (const Eigen::Vector3d& r : x) {
+        std::fprintf(stderr, "x %.17g %.17g %.17g\n", r[0], r[1], r[2]);
+    }
+    std::fprintf(stderr,
+                 "cutoff %.17g half %d sorted %d shifts %d distances %d vectors %d threads %d "
+                 "backend %d max_pairs %zu radii %s species %s table %zu\n",
+                 o.cutoff, o.half, o.sorted, o.shifts, o.distances, o.vectors, o.threads, o.backend,
+                 o.max_pairs, o.radii ? "set" : "NULL", o.species ? "set" : "NULL",
+                 o.species_cutoff_count);
+    for (std::size_t i = 0; o.radii != nullptr && i < x.size(); ++i) {
+        std::fprintf(stderr, "radius %.17g\n", o.radii[i]);
+    }
+    for (std::size_t k = 0; o.species_cutoffs != nullptr && k < o.species_cutoff_count; ++k) {
+        std::fprintf(stderr, "table %d %d %.17g\n", o.species_cutoffs[k].a, o.species_cutoffs[k].b,
+                     o.species_cutoffs[k].cutoff);
+    }
 }
 
 // The largest cutoff any pair can have (NaN passes through, so the oracle is skipped).
@@ -635,6 +665,10 @@ void verlet_update(FuzzedDataProvider& in, State& state) {
                           *cbox, x, o.cutoff + state.verlet_options.skin, max_oracle_work))) {
             return;
         }
+    }
+    if (verbose && box != nullptr) {
+        std::fprintf(stderr, "Verlet update, skin %.17g\n", state.verlet_options.skin);
+        print_call(*box, x, o);
     }
     int rebuilt = -7;
     const bool want_rebuilt = in.ConsumeBool();
