@@ -46,7 +46,9 @@ class DirectBackend final : public Backend {
         for (int k = 0; k < 3; ++k) {
             const double w = input.frame.perpendicular_widths()[k];
             m[k] = input.frame.periodic(k)
-                       ? int(std::min(std::ceil(reach / w), std::ceil(input.search_radius / w) + 1))
+                       ? checked_image_reach(
+                             std::min(std::ceil(reach / w), std::ceil(input.search_radius / w) + 1),
+                             input.search_radius, w, k)
                        : 0;
         }
         // S = 0 first, then S < 0, then S > 0 lexicographically (from positive_begin_).
