@@ -169,6 +169,18 @@ void compare(const Box& box, const std::vector<Eigen::Vector3d>& x, const Cutoff
     }
 }
 
+/// About how many periodic images a pair can have within `cutoff` (the oracle's and the image
+/// backends' loop; infinite or NaN for a cutoff that is).
+inline double image_count(const Box& box, double cutoff) {
+    double images = 1;
+    for (int k = 0; k < 3; ++k) {
+        if (box.periodic(k)) {
+            images *= 2 * (cutoff / box.perpendicular_widths()[k]) + 3;
+        }
+    }
+    return images;
+}
+
 /// Whether the oracle can run on these positions at this (largest) cutoff within `budget`
 /// pair-image tests: finite input, fractional coordinates an int can hold (its image range),
 /// and few enough images.
@@ -182,13 +194,7 @@ inline bool oracle_affordable(const Box& box, const std::vector<Eigen::Vector3d>
             return false;
         }
     }
-    double images = 1;
-    for (int k = 0; k < 3; ++k) {
-        if (box.periodic(k)) {
-            images *= 2 * (cutoff / box.perpendicular_widths()[k]) + 3;
-        }
-    }
-    return images * double(x.size()) * double(x.size()) <= budget;
+    return image_count(box, cutoff) * double(x.size()) * double(x.size()) <= budget;
 }
 
 } // namespace tricell::fuzz
