@@ -64,9 +64,14 @@ inline bool lexicographically_positive(int a, int b, int c) {
     return a > 0 || (a == 0 && (b > 0 || (b == 0 && c > 0)));
 }
 
-/// The list's own rules for n atoms. `sorted`: the order and the n + 1 offsets are checked.
-inline void check_rules(const Box& box, std::size_t n, bool half, bool sorted,
+/// What a list promises about its order: nothing, grouped by i with n + 1 offsets (a Verlet
+/// list), or sorted by (i, j, S) with offsets.
+enum class Order { any, grouped, sorted };
+
+/// The list's own rules for n atoms, and its order.
+inline void check_rules(const Box& box, std::size_t n, bool half, Order order,
                         std::size_t max_pairs, const ListView& list) {
+    const bool sorted = order == Order::sorted;
     if (max_pairs != 0 && list.size > max_pairs) {
         broken("more pairs than max_pairs: " + std::to_string(list.size));
     }
@@ -100,7 +105,7 @@ inline void check_rules(const Box& box, std::size_t n, bool half, bool sorted,
         }
         before = here;
     }
-    if (sorted) {
+    if (order != Order::any) {
         if (list.offsets == nullptr || list.offset_count != n + 1 || list.offsets[0] != 0 ||
             list.offsets[n] != list.size) {
             broken("sorted list offsets have the wrong size or ends");

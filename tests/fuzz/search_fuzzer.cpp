@@ -294,8 +294,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         if (!list.empty() && !have_oracle && x.empty()) {
             broken("pairs without atoms");
         }
-        tricell::fuzz::check_rules(box, x.size(), options.half, options.sorted, max_pairs,
-                                   tricell::fuzz::view(list));
+        tricell::fuzz::check_rules(box, x.size(), options.half,
+                                   options.sorted ? tricell::fuzz::Order::sorted
+                                                  : tricell::fuzz::Order::any,
+                                   max_pairs, tricell::fuzz::view(list));
         if (options.threads != 1) {
             // The stored list is the same pair for pair whatever the number of threads.
             NeighborOptions single = options;
