@@ -377,7 +377,9 @@ void NeighborSearch::build(const Box& caller_box, PointsView positions,
     s.atom_count = n;
     s.estimated_pairs = 0;
     const double cutoff = s.rule.max_cutoff();
-    s.search_radius = cutoff * (1 + search_margin);
+    // At most the largest double: the margin overflowed a finite cutoff near it to inf, which
+    // the grid refuses and the other backends accept (found by the search fuzzer).
+    s.search_radius = std::min(cutoff * (1 + search_margin), std::numeric_limits<double>::max());
 
     // Wrap into the box along periodic axes, remembering the image: x = wrapped + H image.
     std::vector<Eigen::Vector3d> fractional(n);

@@ -94,6 +94,20 @@ std::vector<Case> cases() {
     return out;
 }
 
+// The search radius, the cutoff plus a rounding margin, overflowed to inf for a finite cutoff
+// near the largest double: the grid backends refused it, the direct and octree backends
+// accepted it. In an open box every pair counts.
+TEST(SearchRegressions, LargestFiniteCutoffInAnOpenBox) {
+    Case c{"cutoff near the largest double", 5 * Eigen::Matrix3d::Identity(), {}, {}, {}};
+    c.pbc.axes = {false, false, false};
+    c.x = {{0, 1.445499193939207e-07, 0.31249999999998568},
+           {0, 0, 2.7381881326162194},
+           {0, -5.0000000000000005e-17, 0}};
+    c.options.cutoff = 1.7976931348609993e+308;
+    c.options.sorted = true;
+    expect_oracle(c);
+}
+
 TEST(SearchRegressions, FuzzerFindsAgreeWithTheOracleOnEveryBackend) {
     for (const Case& c : cases()) {
         SCOPED_TRACE(c.name);
