@@ -274,18 +274,21 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         const char* engine = tricell::backend_name(backend);
         NeighborList list;
         bool threw = false;
+        std::string message;
         try {
             tricell::compute_neighbors(box, x, options, list);
         } catch (const tricell::Error& e) {
             check_message(e.what());
             threw = true;
+            message = e.what();
             if (rejected < 0) {
                 first_message = e.what();
             }
         }
         if (rejected >= 0 && int(threw) != rejected) {
             broken(std::string("engines disagree on rejecting the input: ") + engine +
-                   (threw ? " threw" : " did not throw; the first threw: " + first_message));
+                   (threw ? " threw: " + message
+                          : " did not throw; the first threw: " + first_message));
         }
         rejected = int(threw);
         if (threw) {
