@@ -65,11 +65,16 @@ class DirectBackend final : public Backend {
                         continue;
                     }
                     const double root = std::sqrt(disc);
-                    // Clamped to [-m, m] as doubles before the cast: with c nearly orthogonal to
-                    // a huge row the roots can lie far outside an int.
-                    const int sc_lo =
-                        int(std::max(double(-m[2]), std::floor((-ac - root) / cc) - 1));
-                    const int sc_hi = int(std::min(double(m[2]), std::ceil((-ac + root) / cc) + 1));
+                    // Clamped as doubles before the cast: with c nearly orthogonal to a huge row
+                    // the roots can lie far outside an int, on either side of [-m, m] (an
+                    // interval wholly above or below it is empty); a NaN root (a row that
+                    // overflowed) scans all of [-m, m], which the exact test below filters.
+                    const auto bound = [](double v, double lo, double hi, double nan) {
+                        return int(std::isnan(v) ? nan : std::clamp(v, lo, hi));
+                    };
+                    const double mc = m[2];
+                    const int sc_lo = bound(std::floor((-ac - root) / cc) - 1, -mc, mc + 1, -mc);
+                    const int sc_hi = bound(std::ceil((-ac + root) / cc) + 1, -mc - 1, mc, mc);
                     for (int sc = sc_lo; sc <= sc_hi; ++sc) {
                         const bool positive =
                             sa > 0 || (sa == 0 && (sb > 0 || (sb == 0 && sc > 0)));
