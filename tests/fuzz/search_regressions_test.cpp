@@ -108,6 +108,22 @@ TEST(SearchRegressions, LargestFiniteCutoffInAnOpenBox) {
     expect_oracle(c);
 }
 
+// The direct backend's interval of c images lay wholly above [-m, m] (c nearly orthogonal to a
+// long row), and its lower end, clamped on one side only, was cast to int from 7e11 (UBSan).
+TEST(SearchRegressions, DirectImageIntervalAboveItsRange) {
+    Eigen::Matrix3d h;
+    h << -4.25, -1e-12, -1e-12, -1e-12, -1e-12, -1e-12, -1e-12, 1, -1e-12;
+    Case c{"c-image interval above [-m, m]", h, {}, {}, {}};
+    c.pbc.axes = {true, false, false};
+    const Eigen::Vector3d a(-0.58333333333447346, -1.27734375e-12, 0.14008884803807842);
+    c.x = {a, a, a, a, a, {-4.2499999999999991, -9.9999999999999978e-13, -9.9999999999999978e-13},
+           a, a};
+    c.options.cutoff = 1e-300;
+    c.options.threads = 2;
+    c.options.reduce_cell = true;
+    expect_oracle(c);
+}
+
 TEST(SearchRegressions, FuzzerFindsAgreeWithTheOracleOnEveryBackend) {
     for (const Case& c : cases()) {
         SCOPED_TRACE(c.name);
