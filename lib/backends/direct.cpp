@@ -14,6 +14,7 @@
 // (the scanner orients what it is given canonically). The work units are the atoms a.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "backends/backend.hpp"
 
@@ -38,7 +39,13 @@ class DirectBackend final : public Backend {
         }
         // |D| >= |T| - |x_b - x_a| and |x_b - x_a| <= the diagonal of the atoms' bounding box
         // (plus a margin for the rounding between fractional and Cartesian positions).
-        const double reach = input.search_radius + (hi - lo).norm() * (1 + 1e-12) + 1e-12;
+        // Infinite when the spread is not finite (Cartesian positions near the largest double
+        // on an open axis overflow to inf, and inf - inf is NaN): then every image within the
+        // |S_k| bound below is a candidate.
+        const double spread = (hi - lo).norm();
+        const double reach = std::isfinite(spread)
+                                 ? input.search_radius + spread * (1 + 1e-12) + 1e-12
+                                 : std::numeric_limits<double>::infinity();
         // Along a periodic axis the wrapped fractional coordinates differ by less than 1, and
         // |D| >= w_k |(s_b - s_a + S)_k|, so |S_k| < r / w_k + 1 whatever the spread of the atoms
         // along open axes (which only loosens the |T| bound above).
