@@ -124,6 +124,19 @@ TEST(SearchRegressions, DirectImageIntervalAboveItsRange) {
     expect_oracle(c);
 }
 
+// Coincident atoms near the largest double along an open axis: their Cartesian spread in the
+// direct backend was inf - inf = NaN, and the NaN image count was refused where every other
+// backend answered.
+TEST(SearchRegressions, DirectSpreadOfHugeCoordinatesIsNotNaN) {
+    Eigen::Matrix3d h;
+    h << 5, 5, 5, 0, 5, 5, 0, 0, 0.7973541784932775;
+    Case c{"coordinates near the largest double", h, {}, {}, {}};
+    c.pbc.axes = {true, false, false};
+    c.x.assign(6, Eigen::Vector3d(-10.706230845080926, -1e-12, 9.9715791068690752e+307));
+    c.options.cutoff = 1e-300;
+    expect_oracle(c);
+}
+
 TEST(SearchRegressions, FuzzerFindsAgreeWithTheOracleOnEveryBackend) {
     for (const Case& c : cases()) {
         SCOPED_TRACE(c.name);
