@@ -288,8 +288,11 @@ SearchBackend automatic_backend(const Box& box, const std::vector<Eigen::Vector3
         const Eigen::Vector3d& s = fractional[t * n / samples];
         std::uint64_t key = 0;
         for (std::size_t a = 0; a < 3; ++a) {
+            // NaN when a denormal span made the scale inf and an atom sits at the origin (0 * inf,
+            // search fuzzer): that atom is in cell 0.
             const double c = std::floor((s[int(a)] - origin[a]) * scale[a]);
-            key = key * dims[a] + std::uint64_t(std::clamp(c, 0.0, double(dims[a] - 1)));
+            key = key * dims[a] +
+                  std::uint64_t(std::clamp(std::isnan(c) ? 0.0 : c, 0.0, double(dims[a] - 1)));
         }
         keys[t] = key;
     }
