@@ -137,6 +137,20 @@ TEST(SearchRegressions, DirectSpreadOfHugeCoordinatesIsNotNaN) {
     expect_oracle(c);
 }
 
+// A denormal extent along an open axis made the automatic choice's cell scale inf, and an atom
+// at the extent's origin got cell NaN, cast to an integer (UBSan).
+TEST(SearchRegressions, AutomaticChoiceWithADenormalOpenExtent) {
+    Eigen::Matrix3d h;
+    h << 5, 0, 0, 0, 5, 0, 0, 0, 1;
+    Case c{"denormal extent on an open axis", h, {}, {}, {}};
+    c.pbc.axes = {true, true, false};
+    c.x = {{5.0000000000000005e-17, 0, 0},
+           {4.9406564584124654e-324, 10, 4.9406564584124654e-324},
+           {19.999466007575393, -15, 0}};
+    c.options.cutoff = 1e-300;
+    expect_oracle(c);
+}
+
 TEST(SearchRegressions, FuzzerFindsAgreeWithTheOracleOnEveryBackend) {
     for (const Case& c : cases()) {
         SCOPED_TRACE(c.name);
