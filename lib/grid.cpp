@@ -70,10 +70,12 @@ CellGrid::CellGrid(const Box& box, const GridOptions& options, const Eigen::Vect
     }
 
     for (int axis = 0; axis < 3; ++axis) {
-        if (span[axis] > 0) {
+        // A span so small (denormal) that the inverse cell size overflows counts as a plane: an
+        // atom at the origin was at 0 * inf = NaN cells (search fuzzer).
+        if (span[axis] > 0 && std::isfinite(dims_[axis] / span[axis])) {
             cell_size_[axis] = span[axis] / dims_[axis];
         } else {
-            cell_size_[axis] = 1; // all positions share one plane: any size, one cell
+            cell_size_[axis] = 1; // all positions share one plane: any size, every atom in cell 0
         }
         inverse_size_[axis] = 1.0 / cell_size_[axis];
         // A pair within the radius is at most r / (w * cell_size) cell layers apart.

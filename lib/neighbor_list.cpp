@@ -251,8 +251,11 @@ SearchBackend automatic_backend(const Box& box, const std::vector<Eigen::Vector3
         const Eigen::Vector3d& s = fractional[t * n / samples];
         std::uint64_t key = 0;
         for (std::size_t a = 0; a < 3; ++a) {
+            // NaN when a denormal span made the scale inf and an atom sits at the origin (0 * inf,
+            // search fuzzer): that atom is in cell 0.
             const double c = std::floor((s[int(a)] - origin[a]) * scale[a]);
-            key = key * dims[a] + std::uint64_t(std::clamp(c, 0.0, double(dims[a] - 1)));
+            key = key * dims[a] +
+                  std::uint64_t(std::clamp(std::isnan(c) ? 0.0 : c, 0.0, double(dims[a] - 1)));
         }
         keys[t] = key;
     }
@@ -352,7 +355,9 @@ void NeighborSearch::build(const Box& caller_box, PointsView positions,
     s.atom_count = n;
     s.estimated_pairs = 0;
     const double cutoff = s.rule.max_cutoff();
-    s.search_radius = cutoff * (1 + search_margin);
+    // At most the largest double: the margin overflowed a finite cutoff near it to inf, which
+    // the grid refuses and the other backends accept (found by the search fuzzer).
+    s.search_radius = std::min(cutoff * (1 + search_margin), std::numeric_limits<double>::max());
 
     // Wrap into the box along periodic axes, remembering the image: x = wrapped + H image.
     std::vector<Eigen::Vector3d> fractional(n);

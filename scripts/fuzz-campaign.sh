@@ -15,7 +15,7 @@ seconds="${1:-3600}"
 shift || true
 harnesses=("$@")
 if [ ${#harnesses[@]} -eq 0 ]; then
-    harnesses=(poscar xyz cif search cli)
+    harnesses=(poscar xyz cif search cli c_api)
 fi
 runs="${TRICELL_FUZZ_RUNS:-10000000}"
 

@@ -26,4 +26,4 @@ ctest --test-dir build-asan -j "$jobs" --output-on-failure
 
 echo "== fuzzers (build-fuzz/, clang-14, ASan + UBSan + libFuzzer)"
 bash scripts/fuzz-build.sh
-ctest --test-dir build-fuzz -L fuzz --output-on-failure
+ctest --test-dir build-fuzz -L fuzz -j "$jobs" --output-on-failure

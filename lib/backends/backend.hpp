@@ -18,6 +18,7 @@
 
 #include "detail/candidate_scan.hpp"
 #include "tricell/box.hpp"
+#include "tricell/error.hpp"
 #include "tricell/neighbor_list.hpp"
 
 namespace tricell::detail {
@@ -59,5 +60,18 @@ class Backend {
 };
 
 std::unique_ptr<Backend> make_backend(SearchBackend kind);
+
+/// The periodic images a backend enumerates along `axis` (perpendicular width `width`) for
+/// `search_radius`, `images` (from its own bound), as an int. Refused past a million, as the
+/// grid refuses a million cells: before the cast, which a radius of ~1e286 (a Verlet list's
+/// rounding margin for coordinates of 1e300) overflowed.
+inline int checked_image_reach(double images, double search_radius, double width, int axis) {
+    if (!(images < 1e6)) {
+        fail<InvalidArgument>("search radius ", search_radius,
+                              " spans more than a million images along axis ", axis,
+                              " (perpendicular width ", width, ")");
+    }
+    return int(images);
+}
 
 } // namespace tricell::detail

@@ -22,6 +22,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 #include "backends/backend.hpp"
 
@@ -49,10 +50,15 @@ class DirectBackend final : public Backend {
         // (plus a margin for the rounding between fractional and Cartesian positions).
         // The diagonal is rounded up to a 16th of the radius: a longer reach only adds images
         // that no pair's own limit takes, and atoms moving inside a fixed cell then leave the
-        // reach, and with it the images, unchanged from call to call.
+        // reach, and with it the images, unchanged from call to call. The reach is infinite when
+        // the spread is not finite (Cartesian positions near the largest double on an open axis
+        // overflow to inf, and inf - inf is NaN): then every image within the |S_k| bound below
+        // is a candidate.
+        const double diagonal = (hi - lo).norm() * (1 + 1e-12) + 1e-12;
         const double step = input.search_radius / 16;
-        const double spread = std::ceil(((hi - lo).norm() * (1 + 1e-12) + 1e-12) / step) * step;
-        const double reach = input.search_radius + spread;
+        const double spread = step > 0 ? std::ceil(diagonal / step) * step : diagonal;
+        const double reach = std::isfinite(spread) ? input.search_radius + spread
+                                                   : std::numeric_limits<double>::infinity();
         if (same_images(input, reach)) {
             return; // the images of the last call (in the backend's own pooled object)
         }
@@ -64,10 +70,11 @@ class DirectBackend final : public Backend {
         int m[3];
         for (int k = 0; k < 3; ++k) {
             const double w = input.frame.perpendicular_widths()[k];
-            m[k] =
-                input.frame.periodic(k)
-                    ? int(std::min(std::ceil(reach_ / w), std::ceil(input.search_radius / w) + 1))
-                    : 0;
+            m[k] = input.frame.periodic(k)
+                       ? checked_image_reach(
+                             std::min(std::ceil(reach_ / w), std::ceil(input.search_radius / w) + 1),
+                             input.search_radius, w, k)
+                       : 0;
         }
         // Every image with |T| < reach, S = 0 first, with its bucket of |T|.
         reach_sq_ = reach_ * reach_;
@@ -83,10 +90,16 @@ class DirectBackend final : public Backend {
                     continue;
                 }
                 const double root = std::sqrt(disc);
-                // Clamped to [-m, m] as doubles before the cast: with c nearly orthogonal to a
-                // huge row the roots can lie far outside an int.
-                const int sc_lo = int(std::max(double(-m[2]), std::floor((-ac - root) / cc) - 1));
-                const int sc_hi = int(std::min(double(m[2]), std::ceil((-ac + root) / cc) + 1));
+                // Clamped as doubles before the cast: with c nearly orthogonal to a huge row the
+                // roots can lie far outside an int, on either side of [-m, m] (an interval wholly
+                // above or below it is empty); a NaN root (a row that overflowed) scans all of
+                // [-m, m], which the exact test below filters.
+                const auto bound = [](double v, double lo, double hi, double nan) {
+                    return int(std::isnan(v) ? nan : std::clamp(v, lo, hi));
+                };
+                const double mc = m[2];
+                const int sc_lo = bound(std::floor((-ac - root) / cc) - 1, -mc, mc + 1, -mc);
+                const int sc_hi = bound(std::ceil((-ac + root) / cc) + 1, -mc - 1, mc, mc);
                 for (int sc = sc_lo; sc <= sc_hi; ++sc) {
                     if (sa == 0 && sb == 0 && sc == 0) {
                         continue;

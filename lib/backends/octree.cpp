@@ -371,7 +371,10 @@ class OctreeBackend final : public Backend {
         shifts_.clear();
         std::array<int, 3> reach{};
         for (int k = 0; k < 3; ++k) {
-            reach[std::size_t(k)] = pbc[k] ? int(std::ceil(radius_ / widths_[k])) + 1 : 0;
+            reach[std::size_t(k)] = pbc[k]
+                                        ? checked_image_reach(std::ceil(radius_ / widths_[k]) + 1,
+                                                              radius_, widths_[k], k)
+                                        : 0;
         }
         const Node& root = nodes_[0];
         std::array<int, 3> s;

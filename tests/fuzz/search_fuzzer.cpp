@@ -33,6 +33,7 @@
 #include <tricell/error.hpp>
 #include <tricell/neighbor_list.hpp>
 
+#include "differential.hpp"
 #include "support/brute_force.hpp"
 
 namespace {
@@ -40,17 +41,16 @@ namespace {
 using tricell::Box;
 using tricell::NeighborList;
 using tricell::NeighborOptions;
+using tricell::fuzz::broken;
+using tricell::fuzz::check_message;
 using tricell::testing::PairKey;
 using tricell::testing::PairMap;
 
 constexpr std::size_t max_atoms = 8;
-constexpr std::size_t max_pairs = 20000;
+constexpr std::size_t max_pairs =
+    4000; // larger lists are refused: their maps cost seconds per input
 constexpr double max_oracle_work = 2e5; // pair-image tests
-
-[[noreturn]] void broken(const std::string& what) {
-    std::fprintf(stderr, "search_fuzzer: %s\n", what.c_str());
-    std::abort();
-}
+constexpr double max_images = 1e4;      // periodic images within the cutoff
 
 double pick(FuzzedDataProvider& in, std::initializer_list<double> values) {
     const std::size_t k = in.ConsumeIntegralInRange<std::size_t>(0, values.size() - 1);
@@ -193,123 +193,6 @@ double cutoff(FuzzedDataProvider& in, const Box& box, const std::vector<Eigen::V
     }
 }
 
-bool lexicographically_positive(int a, int b, int c) {
-    return a > 0 || (a == 0 && (b > 0 || (b == 0 && c > 0)));
-}
-
-struct Tolerance {
-    double kappa; // condition number of H
-    double h_norm;
-    double operator()(const std::vector<Eigen::Vector3d>& x, const PairKey& key,
-                      double cutoff) const {
-        const auto& [i, j, a, b, c] = key;
-        const double size =
-            x[i].norm() + x[j].norm() + h_norm * (std::abs(a) + std::abs(b) + std::abs(c)) + cutoff;
-        return 512 * std::numeric_limits<double>::epsilon() * kappa * size;
-    }
-};
-
-double oracle_distance(const Box& box, const std::vector<Eigen::Vector3d>& x, const PairKey& key) {
-    const auto& [i, j, a, b, c] = key;
-    return (x[j] - x[i] + box.matrix() * Eigen::Vector3d(a, b, c)).norm();
-}
-
-// The list's own rules: indices in range, no (i, i, 0), zero shifts along open axes, the
-// canonical orientation of a half list, the order and offsets of a sorted one, max_pairs.
-void check_rules(const Box& box, std::size_t n, const NeighborOptions& options,
-                 const NeighborList& list) {
-    if (list.size() > max_pairs) {
-        broken("more pairs than max_pairs: " + std::to_string(list.size()));
-    }
-    for (std::size_t k = 0; k < list.size(); ++k) {
-        const auto i = list.i()[k], j = list.j()[k];
-        const tricell::Shift s = list.shift(k);
-        if (i >= n || j >= n) {
-            broken("index out of range");
-        }
-        if (i == j && s == tricell::Shift::Zero()) {
-            broken("an atom paired with itself");
-        }
-        for (int axis = 0; axis < 3; ++axis) {
-            if (!box.periodic(axis) && s[axis] != 0) {
-                broken("non-zero shift along an open axis");
-            }
-        }
-        if (options.half && !(i < j || (i == j && lexicographically_positive(s[0], s[1], s[2])))) {
-            broken("half list pair not in canonical orientation");
-        }
-        if (options.sorted && k > 0) {
-            const tricell::Shift p = list.shift(k - 1);
-            const PairKey before{list.i()[k - 1], list.j()[k - 1], p[0], p[1], p[2]};
-            const PairKey here{i, j, s[0], s[1], s[2]};
-            if (!(before < here)) {
-                broken("sorted list out of order at pair " + std::to_string(k));
-            }
-        }
-    }
-    if (options.sorted) {
-        const auto& offsets = list.offsets();
-        if (offsets.size() != n + 1 || offsets.front() != 0 || offsets.back() != list.size()) {
-            broken("sorted list offsets have the wrong size or ends");
-        }
-        for (std::size_t i = 0; i < n; ++i) {
-            for (std::size_t k = offsets[i]; k < offsets[i + 1]; ++k) {
-                if (list.i()[k] != i) {
-                    broken("sorted list offsets do not match i");
-                }
-            }
-        }
-    }
-}
-
-void compare(const Box& box, const std::vector<Eigen::Vector3d>& x, double cutoff_value,
-             const PairMap& expected, const PairMap& found, const Tolerance& tolerance,
-             const char* engine) {
-    for (const auto& [key, value] : found) {
-        const double d = oracle_distance(box, x, key);
-        const double tol = tolerance(x, key, cutoff_value);
-        const auto match = expected.find(key);
-        if (match == expected.end()) {
-            if (!(std::abs(d - cutoff_value) <= tol)) {
-                broken(std::string(engine) + ": extra pair at distance " + std::to_string(d) +
-                       " for cutoff " + std::to_string(cutoff_value));
-            }
-            continue;
-        }
-        if (!(std::abs(value.distance - d) <= tol) ||
-            !((value.vector - match->second.vector).norm() <= tol)) {
-            broken(std::string(engine) + ": wrong distance or vector: " +
-                   std::to_string(value.distance) + " instead of " + std::to_string(d));
-        }
-    }
-    for (const auto& [key, value] : expected) {
-        if (found.count(key) == 0 &&
-            !(std::abs(value.distance - cutoff_value) <= tolerance(x, key, cutoff_value))) {
-            broken(std::string(engine) + ": missing pair at distance " +
-                   std::to_string(value.distance) + " for cutoff " + std::to_string(cutoff_value));
-        }
-    }
-}
-
-void check_message(const tricell::Error& e) {
-    const std::string message = e.what();
-    if (message.empty() || message.find('\n') != std::string::npos) {
-        broken("error message is empty or not one line: " + message);
-    }
-}
-
-// Brute-force work, or infinity when the images it would enumerate are too many to count.
-double oracle_work(const Box& box, const std::vector<Eigen::Vector3d>& x, double cutoff_value) {
-    double images = 1;
-    for (int k = 0; k < 3; ++k) {
-        if (box.periodic(k)) {
-            images *= 2 * (cutoff_value / box.perpendicular_widths()[k]) + 3;
-        }
-    }
-    return std::isfinite(images) ? images * double(x.size()) * double(x.size())
-                                 : std::numeric_limits<double>::infinity();
-}
-
 // Every input runs through every backend, automatic included.
 constexpr tricell::SearchBackend backends[] = {
     tricell::SearchBackend::automatic, tricell::SearchBackend::dense,
@@ -329,7 +212,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     try {
         made = Box::from_columns(h, pbc);
     } catch (const tricell::Error& e) {
-        check_message(e);
+        check_message(e.what());
         return 0;
     }
     const Box& box = *made;
@@ -348,10 +231,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     options.max_pairs = max_pairs;
     options.quantities.shifts = options.quantities.distances = options.quantities.vectors = true;
 
-    // Speed, not correctness: a cutoff of ~100 perpendicular widths takes the search ~0.5 s
-    // per backend under the sanitizers (tens of thousands of image offsets), too slow for a
-    // fuzzer that wants thousands of inputs per second.
-    if (options.cutoff > 20 * box.perpendicular_widths().minCoeff()) {
+    // Speed, not correctness: every backend's work grows with the periodic images within the
+    // cutoff. The earlier bound (20 perpendicular widths, so up to ~8e4 images over three axes)
+    // let the slowest corpus input take 14 s under the sanitizers on a loaded machine, past
+    // -timeout=10. 1e4 images still allow 20 widths along one axis or ~10 along each of three.
+    // A cutoff the search refuses (0, negative, NaN, infinite) is fast and always checked.
+    if (std::isfinite(options.cutoff) && options.cutoff > 0 &&
+        !(tricell::fuzz::image_count(box, options.cutoff) <= max_images)) {
         return 0;
     }
     if (std::getenv("TRICELL_FUZZ_VERBOSE") != nullptr) {
@@ -371,23 +257,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                      options.hash_table_size, options.leaf_size);
     }
     const bool have_oracle =
-        std::isfinite(options.cutoff) && options.cutoff > 0 &&
-        std::all_of(x.begin(), x.end(), [](const Eigen::Vector3d& r) { return r.allFinite(); }) &&
-        oracle_work(box, x, options.cutoff) <= max_oracle_work;
+        tricell::fuzz::oracle_affordable(box, x, options.cutoff, max_oracle_work);
     PairMap expected;
     if (have_oracle) {
-        // The oracle's image range needs fractional coordinates an int can hold.
-        for (const Eigen::Vector3d& r : x) {
-            if (!((box.inverse() * r).cwiseAbs().maxCoeff() < 1e8)) {
-                return 0;
-            }
-        }
         expected = tricell::testing::brute_force_pairs(box, x, options.cutoff);
         if (options.half) {
             expected = tricell::testing::canonical_half(expected);
         }
     }
-    const Tolerance tolerance{h.norm() * box.inverse().norm(), h.norm()};
+    const auto cutoff_of = [&](std::uint32_t, std::uint32_t) { return options.cutoff; };
 
     int rejected = -1; // unknown until the first engine ran
     std::string first_message;
@@ -396,18 +274,21 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         const char* engine = tricell::backend_name(backend);
         NeighborList list;
         bool threw = false;
+        std::string message;
         try {
             tricell::compute_neighbors(box, x, options, list);
         } catch (const tricell::Error& e) {
-            check_message(e);
+            check_message(e.what());
             threw = true;
+            message = e.what();
             if (rejected < 0) {
                 first_message = e.what();
             }
         }
         if (rejected >= 0 && int(threw) != rejected) {
             broken(std::string("engines disagree on rejecting the input: ") + engine +
-                   (threw ? " threw" : " did not throw; the first threw: " + first_message));
+                   (threw ? " threw: " + message
+                          : " did not throw; the first threw: " + first_message));
         }
         rejected = int(threw);
         if (threw) {
@@ -416,7 +297,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         if (!list.empty() && !have_oracle && x.empty()) {
             broken("pairs without atoms");
         }
-        check_rules(box, x.size(), options, list);
+        tricell::fuzz::check_rules(box, x.size(), options.half,
+                                   options.sorted ? tricell::fuzz::Order::sorted
+                                                  : tricell::fuzz::Order::any,
+                                   max_pairs, tricell::fuzz::view(list));
         if (options.threads != 1) {
             // The stored list is the same pair for pair whatever the number of threads.
             NeighborOptions single = options;
@@ -428,14 +312,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             }
         }
         if (have_oracle) {
-            compare(box, x, options.cutoff, expected, tricell::testing::to_map(list), tolerance,
-                    engine);
+            tricell::fuzz::compare(box, x, cutoff_of, expected, tricell::testing::to_map(list),
+                                   engine);
             PairMap visited;
             tricell::for_each_pair(box, x, options, [&](const tricell::Pair& p) {
                 visited[PairKey{p.i, p.j, p.shift[0], p.shift[1], p.shift[2]}] =
                     tricell::testing::PairValue{p.distance(), p.vector};
             });
-            compare(box, x, options.cutoff, expected, visited, tolerance, engine);
+            tricell::fuzz::compare(box, x, cutoff_of, expected, visited, engine);
         }
     }
     return 0;

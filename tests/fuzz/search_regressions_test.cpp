@@ -94,6 +94,63 @@ std::vector<Case> cases() {
     return out;
 }
 
+// The search radius, the cutoff plus a rounding margin, overflowed to inf for a finite cutoff
+// near the largest double: the grid backends refused it, the direct and octree backends
+// accepted it. In an open box every pair counts.
+TEST(SearchRegressions, LargestFiniteCutoffInAnOpenBox) {
+    Case c{"cutoff near the largest double", 5 * Eigen::Matrix3d::Identity(), {}, {}, {}};
+    c.pbc.axes = {false, false, false};
+    c.x = {{0, 1.445499193939207e-07, 0.31249999999998568},
+           {0, 0, 2.7381881326162194},
+           {0, -5.0000000000000005e-17, 0}};
+    c.options.cutoff = 1.7976931348609993e+308;
+    c.options.sorted = true;
+    expect_oracle(c);
+}
+
+// The direct backend's interval of c images lay wholly above [-m, m] (c nearly orthogonal to a
+// long row), and its lower end, clamped on one side only, was cast to int from 7e11 (UBSan).
+TEST(SearchRegressions, DirectImageIntervalAboveItsRange) {
+    Eigen::Matrix3d h;
+    h << -4.25, -1e-12, -1e-12, -1e-12, -1e-12, -1e-12, -1e-12, 1, -1e-12;
+    Case c{"c-image interval above [-m, m]", h, {}, {}, {}};
+    c.pbc.axes = {true, false, false};
+    const Eigen::Vector3d a(-0.58333333333447346, -1.27734375e-12, 0.14008884803807842);
+    c.x = {a, a, a, a, a, {-4.2499999999999991, -9.9999999999999978e-13, -9.9999999999999978e-13},
+           a, a};
+    c.options.cutoff = 1e-300;
+    c.options.threads = 2;
+    c.options.reduce_cell = true;
+    expect_oracle(c);
+}
+
+// Coincident atoms near the largest double along an open axis: their Cartesian spread in the
+// direct backend was inf - inf = NaN, and the NaN image count was refused where every other
+// backend answered.
+TEST(SearchRegressions, DirectSpreadOfHugeCoordinatesIsNotNaN) {
+    Eigen::Matrix3d h;
+    h << 5, 5, 5, 0, 5, 5, 0, 0, 0.7973541784932775;
+    Case c{"coordinates near the largest double", h, {}, {}, {}};
+    c.pbc.axes = {true, false, false};
+    c.x.assign(6, Eigen::Vector3d(-10.706230845080926, -1e-12, 9.9715791068690752e+307));
+    c.options.cutoff = 1e-300;
+    expect_oracle(c);
+}
+
+// A denormal extent along an open axis made the automatic choice's cell scale inf, and an atom
+// at the extent's origin got cell NaN, cast to an integer (UBSan).
+TEST(SearchRegressions, AutomaticChoiceWithADenormalOpenExtent) {
+    Eigen::Matrix3d h;
+    h << 5, 0, 0, 0, 5, 0, 0, 0, 1;
+    Case c{"denormal extent on an open axis", h, {}, {}, {}};
+    c.pbc.axes = {true, true, false};
+    c.x = {{5.0000000000000005e-17, 0, 0},
+           {4.9406564584124654e-324, 10, 4.9406564584124654e-324},
+           {19.999466007575393, -15, 0}};
+    c.options.cutoff = 1e-300;
+    expect_oracle(c);
+}
+
 TEST(SearchRegressions, FuzzerFindsAgreeWithTheOracleOnEveryBackend) {
     for (const Case& c : cases()) {
         SCOPED_TRACE(c.name);

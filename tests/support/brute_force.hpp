@@ -71,6 +71,20 @@ inline PairMap brute_force_pairs(const Box& box, const std::vector<Eigen::Vector
     return out;
 }
 
+/// The oracle for variable cutoffs (per-atom radii, a species table): brute force at `largest`
+/// (at least every pair's cutoff), keeping the pairs with d < cutoff_of(i, j).
+template <class CutoffOf>
+PairMap brute_force_pairs(const Box& box, const std::vector<Eigen::Vector3d>& x, double largest,
+                          const CutoffOf& cutoff_of) {
+    PairMap out;
+    for (const auto& [key, value] : brute_force_pairs(box, x, largest)) {
+        if (value.distance < cutoff_of(std::get<0>(key), std::get<1>(key))) {
+            out.emplace(key, value);
+        }
+    }
+    return out;
+}
+
 /// The half list that the contract's canonical orientation keeps from a full list:
 /// i < j, or i == j with S lexicographically positive.
 inline PairMap canonical_half(const PairMap& full) {

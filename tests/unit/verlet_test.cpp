@@ -542,6 +542,33 @@ TEST(VerletList, ErrorsNameTheValue) {
     EXPECT_TRUE(list.pairs().empty());
 }
 
+// Found by the C API fuzzer: a coordinate of 1e300 along an open axis widens the candidates'
+// rounding margin (relative to the coordinates) to ~1e286, which spans ~1e286 images of the one
+// periodic axis. Every backend refuses it with a message naming the radius and leaves the list
+// empty (the direct and octree backends cast the image count to int: undefined behaviour, and
+// the octree's wrapped-around count silently lost every pair).
+TEST(VerletList, HugeCoordinateOnAnOpenAxis_RefusedByEveryBackend) {
+    const Box box = Box::from_rows((Eigen::Matrix3d() << 3, -1.663229515947517, 2.9175446155024503,
+                                    0, 3, -3.7960784313725489, 0, 0, 3)
+                                       .finished(),
+                                   tricell::Periodicity{{false, true, false}});
+    const std::vector<Eigen::Vector3d> x = {{7.4999063294325072, 3.2026348788673333, -6.21},
+                                            {10, 1e-300, 1e300},
+                                            {-1.9074678308869324, -0.28953989117890067, 5.85}};
+    for (const tricell::SearchBackend backend :
+         {tricell::SearchBackend::automatic, tricell::SearchBackend::dense,
+          tricell::SearchBackend::linked, tricell::SearchBackend::hash,
+          tricell::SearchBackend::octree, tricell::SearchBackend::direct}) {
+        SCOPED_TRACE(tricell::backend_name(backend));
+        VerletOptions o = verlet_options(6.0225681678921568, 0.7753593772789843);
+        o.neighbors.backend = backend;
+        o.neighbors.max_pairs = 20000;
+        VerletList list(o);
+        EXPECT_THROW_MSG(list.update(box, x), InvalidArgument, "search radius");
+        EXPECT_TRUE(list.pairs().empty());
+    }
+}
+
 // ---- cost model ------------------------------------------------------------------------------
 
 SkinCostModel lj_model() {

@@ -1,0 +1,205 @@
+// What the differential harnesses (search_fuzzer, c_api_fuzzer) check of a list, in one place:
+// the list's own rules (indices in range, no (i, i, 0), zero shifts on open axes, the half
+// orientation, the sorted order and offsets, max_pairs) and the comparison with the brute-force
+// oracle (tests/support/brute_force.hpp).
+//
+// A pair whose distance is within rounding of its cutoff may be in or out: the search subtracts
+// wrapped positions, the oracle the caller's. The allowance grows with the condition number of
+// the box and the size of the coordinates and shifts. A failure prints one line and aborts, so
+// that libFuzzer keeps the input.
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <tricell/box.hpp>
+#include <tricell/error.hpp>
+#include <tricell/neighbor_list.hpp>
+
+#include "support/brute_force.hpp"
+
+namespace tricell::fuzz {
+
+using testing::PairKey;
+using testing::PairMap;
+
+[[noreturn]] inline void broken(const std::string& what) {
+    std::fprintf(stderr, "fuzzer: %s\n", what.c_str());
+    std::abort();
+}
+
+/// The promise of every refusal: a message of one non-empty line.
+inline void check_message(const std::string& message) {
+    if (message.empty() || message.find('\n') != std::string::npos) {
+        broken("error message is empty or not one line: " + message);
+    }
+}
+
+/// The arrays of a stored list, from the C++ or the C API (shifts and offsets may be absent).
+struct ListView {
+    std::size_t size = 0;
+    const std::uint32_t* i = nullptr;
+    const std::uint32_t* j = nullptr;
+    const std::int32_t* shifts = nullptr; // 3 per pair, or nullptr
+    const std::size_t* offsets = nullptr; // offset_count entries, or nullptr
+    std::size_t offset_count = 0;
+};
+
+inline ListView view(const NeighborList& list) {
+    return ListView{list.size(),
+                    list.i().data(),
+                    list.j().data(),
+                    list.shifts().size() == 3 * list.size() ? list.shifts().data() : nullptr,
+                    list.offsets().empty() ? nullptr : list.offsets().data(),
+                    list.offsets().size()};
+}
+
+inline bool lexicographically_positive(int a, int b, int c) {
+    return a > 0 || (a == 0 && (b > 0 || (b == 0 && c > 0)));
+}
+
+/// What a list promises about its order: nothing, grouped by i with n + 1 offsets (a Verlet
+/// list), or sorted by (i, j, S) with offsets.
+enum class Order { any, grouped, sorted };
+
+/// The list's own rules for n atoms, and its order.
+inline void check_rules(const Box& box, std::size_t n, bool half, Order order,
+                        std::size_t max_pairs, const ListView& list) {
+    const bool sorted = order == Order::sorted;
+    if (max_pairs != 0 && list.size > max_pairs) {
+        broken("more pairs than max_pairs: " + std::to_string(list.size));
+    }
+    PairKey before{};
+    for (std::size_t k = 0; k < list.size; ++k) {
+        const std::uint32_t i = list.i[k], j = list.j[k];
+        int s[3] = {0, 0, 0};
+        if (list.shifts != nullptr) {
+            for (int axis = 0; axis < 3; ++axis) {
+                s[axis] = list.shifts[3 * k + std::size_t(axis)];
+            }
+        }
+        if (i >= n || j >= n) {
+            broken("index out of range");
+        }
+        if (list.shifts != nullptr && i == j && s[0] == 0 && s[1] == 0 && s[2] == 0) {
+            broken("an atom paired with itself");
+        }
+        for (int axis = 0; axis < 3; ++axis) {
+            if (!box.periodic(axis) && s[axis] != 0) {
+                broken("non-zero shift along an open axis");
+            }
+        }
+        if (half && (i > j || (list.shifts != nullptr && i == j &&
+                               !lexicographically_positive(s[0], s[1], s[2])))) {
+            broken("half list pair not in canonical orientation");
+        }
+        const PairKey here{i, j, s[0], s[1], s[2]};
+        if (sorted && k > 0 && !(before < here || (list.shifts == nullptr && before == here))) {
+            broken("sorted list out of order at pair " + std::to_string(k));
+        }
+        before = here;
+    }
+    if (order != Order::any) {
+        if (list.offsets == nullptr || list.offset_count != n + 1 || list.offsets[0] != 0 ||
+            list.offsets[n] != list.size) {
+            broken("sorted list offsets have the wrong size or ends");
+        }
+        for (std::size_t i = 0; i < n; ++i) {
+            for (std::size_t k = list.offsets[i]; k < list.offsets[i + 1]; ++k) {
+                if (k >= list.size || list.i[k] != i) {
+                    broken("sorted list offsets do not match i");
+                }
+            }
+        }
+    }
+}
+
+/// The rounding allowance of one pair (see the top of the file).
+struct Tolerance {
+    double kappa; // condition number of H
+    double h_norm;
+    Tolerance(const Box& box)
+        : kappa(box.matrix().norm() * box.inverse().norm()), h_norm(box.matrix().norm()) {}
+    double operator()(const std::vector<Eigen::Vector3d>& x, const PairKey& key,
+                      double cutoff) const {
+        const auto& [i, j, a, b, c] = key;
+        const double size =
+            x[i].norm() + x[j].norm() + h_norm * (std::abs(a) + std::abs(b) + std::abs(c)) + cutoff;
+        return 512 * std::numeric_limits<double>::epsilon() * kappa * size;
+    }
+};
+
+inline double oracle_distance(const Box& box, const std::vector<Eigen::Vector3d>& x,
+                              const PairKey& key) {
+    const auto& [i, j, a, b, c] = key;
+    return (x[j] - x[i] + box.matrix() * Eigen::Vector3d(a, b, c)).norm();
+}
+
+/// `found` against the oracle's `expected`; cutoff_of(i, j) is the cutoff of a pair.
+template <class CutoffOf>
+void compare(const Box& box, const std::vector<Eigen::Vector3d>& x, const CutoffOf& cutoff_of,
+             const PairMap& expected, const PairMap& found, const char* engine) {
+    const Tolerance tolerance(box);
+    for (const auto& [key, value] : found) {
+        const double cutoff = cutoff_of(std::get<0>(key), std::get<1>(key));
+        const double d = oracle_distance(box, x, key);
+        const double tol = tolerance(x, key, cutoff);
+        const auto match = expected.find(key);
+        if (match == expected.end()) {
+            if (!(std::abs(d - cutoff) <= tol)) {
+                broken(std::string(engine) + ": extra pair at distance " + std::to_string(d) +
+                       " for cutoff " + std::to_string(cutoff));
+            }
+            continue;
+        }
+        if (!(std::abs(value.distance - d) <= tol) ||
+            !((value.vector - match->second.vector).norm() <= tol)) {
+            broken(std::string(engine) + ": wrong distance or vector: " +
+                   std::to_string(value.distance) + " instead of " + std::to_string(d));
+        }
+    }
+    for (const auto& [key, value] : expected) {
+        const double cutoff = cutoff_of(std::get<0>(key), std::get<1>(key));
+        if (found.count(key) == 0 &&
+            !(std::abs(value.distance - cutoff) <= tolerance(x, key, cutoff))) {
+            broken(std::string(engine) + ": missing pair at distance " +
+                   std::to_string(value.distance) + " for cutoff " + std::to_string(cutoff));
+        }
+    }
+}
+
+/// About how many periodic images a pair can have within `cutoff` (the oracle's and the image
+/// backends' loop; infinite or NaN for a cutoff that is).
+inline double image_count(const Box& box, double cutoff) {
+    double images = 1;
+    for (int k = 0; k < 3; ++k) {
+        if (box.periodic(k)) {
+            images *= 2 * (cutoff / box.perpendicular_widths()[k]) + 3;
+        }
+    }
+    return images;
+}
+
+/// Whether the oracle can run on these positions at this (largest) cutoff within `budget`
+/// pair-image tests: finite input, fractional coordinates an int can hold (its image range),
+/// and few enough images.
+inline bool oracle_affordable(const Box& box, const std::vector<Eigen::Vector3d>& x, double cutoff,
+                              double budget) {
+    if (!(std::isfinite(cutoff) && cutoff > 0)) {
+        return false;
+    }
+    for (const Eigen::Vector3d& r : x) {
+        if (!r.allFinite() || !((box.inverse() * r).cwiseAbs().maxCoeff() < 1e8)) {
+            return false;
+        }
+    }
+    return image_count(box, cutoff) * double(x.size()) * double(x.size()) <= budget;
+}
+
+} // namespace tricell::fuzz
