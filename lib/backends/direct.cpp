@@ -71,9 +71,9 @@ class DirectBackend final : public Backend {
         for (int k = 0; k < 3; ++k) {
             const double w = input.frame.perpendicular_widths()[k];
             m[k] = input.frame.periodic(k)
-                       ? checked_image_reach(
-                             std::min(std::ceil(reach_ / w), std::ceil(input.search_radius / w) + 1),
-                             input.search_radius, w, k)
+                       ? checked_image_reach(std::min(std::ceil(reach_ / w),
+                                                      std::ceil(input.search_radius / w) + 1),
+                                             input.search_radius, w, k)
                        : 0;
         }
         // Every image with |T| < reach, S = 0 first, with its bucket of |T|.
