@@ -51,8 +51,7 @@ class OrderedOutput {
         while (placed < size_.size() && size_[placed] != unknown) {
             if (limit_ != 0 && size_[placed] > limit_ - end_) {
                 abort();
-                fail<InvalidArgument>("the neighbour list has more than max_pairs = ", limit_,
-                                      " pairs; raise NeighborOptions::max_pairs to allow it");
+                fail_list_over_limit(limit_);
             }
             offset_[placed] = end_;
             end_ += size_[placed];

@@ -17,6 +17,13 @@
 
 namespace tricell::detail {
 
+/// The refusal of a stored list that outgrew NeighborOptions::max_pairs (the sink here and the
+/// threads' ordered output both throw it).
+[[noreturn]] inline void fail_list_over_limit(std::size_t limit) {
+    fail<InvalidArgument>("the neighbour list has more than max_pairs = ", limit,
+                          " pairs; raise NeighborOptions::max_pairs to allow it");
+}
+
 /// The columns a storing sink fills (null: not stored).
 struct PairColumns {
     PairArray<std::uint32_t>* i = nullptr;
@@ -95,8 +102,7 @@ class PairSink {
             return;
         }
         if (limit_ != 0 && capacity_ >= limit_) {
-            fail<InvalidArgument>("the neighbour list has more than max_pairs = ", limit_,
-                                  " pairs; raise NeighborOptions::max_pairs to allow it");
+            fail_list_over_limit(limit_);
         }
         std::size_t next = std::max<std::size_t>(1024, capacity_ * 2);
         if (limit_ != 0) {

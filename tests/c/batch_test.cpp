@@ -125,8 +125,8 @@ TEST(CApiBatch, MatchesCxxBitForBitAndBruteForce) {
             ++structures_seen;
         }
     }
-    EXPECT_GT(pairs_seen, 1000u); // the batches are not all trivially empty
-    EXPECT_GT(structures_seen, 300u);
+    EXPECT_GT(pairs_seen, 1000u);                // the batches are not all trivially empty
+    EXPECT_GT(structures_seen, 2 * batch_count); // 0 to 8 structures a batch
 }
 
 TEST(CApiBatch, EveryValidationBranch) {
