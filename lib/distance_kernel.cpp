@@ -16,9 +16,11 @@ using Kernel = std::uint32_t (*)(const double*, const double*, const double*, st
 
 // Portable version: a vectorisable distance loop, then a branch-free compaction (the index is
 // always written, the count advances only on a hit).
+// (Hit k is recorded as label + k.)
 std::uint32_t within_cutoff_generic(const double* x, const double* y, const double* z,
                                     std::uint32_t count, double ax, double ay, double az,
-                                    double cutoff_sq, std::uint32_t* hits, double* hit_d_sq) {
+                                    double cutoff_sq, std::uint32_t* hits, double* hit_d_sq,
+                                    std::uint32_t label) {
     double d_sq[kernel_block];
     for (std::uint32_t k = 0; k < count; ++k) {
         const double dx = x[k] - ax, dy = y[k] - ay, dz = z[k] - az;
@@ -26,9 +28,27 @@ std::uint32_t within_cutoff_generic(const double* x, const double* y, const doub
     }
     std::uint32_t found = 0;
     for (std::uint32_t k = 0; k < count; ++k) {
-        hits[found] = k;
+        hits[found] = label + k;
         hit_d_sq[found] = d_sq[k];
         found += d_sq[k] < cutoff_sq ? 1u : 0u;
+    }
+    return found;
+}
+
+std::uint32_t within_cutoff_one_generic(const double* x, const double* y, const double* z,
+                                        std::uint32_t count, double ax, double ay, double az,
+                                        double cutoff_sq, std::uint32_t* hits, double* hit_d_sq) {
+    return within_cutoff_generic(x, y, z, count, ax, ay, az, cutoff_sq, hits, hit_d_sq, 0);
+}
+
+std::uint32_t within_cutoff_group_generic(const double* x, const double* y, const double* z,
+                                          std::uint32_t count, const double* ax, const double* ay,
+                                          const double* az, std::uint32_t group, double cutoff_sq,
+                                          std::uint32_t* hits, double* hit_d_sq) {
+    std::uint32_t found = 0;
+    for (std::uint32_t g = 0; g < group; ++g) {
+        found += within_cutoff_generic(x, y, z, count, ax[g], ay[g], az[g], cutoff_sq, hits + found,
+                                       hit_d_sq + found, g * kernel_block);
     }
     return found;
 }
@@ -64,10 +84,11 @@ const CompressTables compress_tables;
 
 // AVX2: four distances at a time (mul and add, no FMA, same order as the generic loop), then the
 // hits are compressed with a lane permutation from a 16-entry table: no branch per hit.
-__attribute__((target("avx2"))) std::uint32_t
+// (Hit k is recorded as label + k.)
+__attribute__((target("avx2"))) inline std::uint32_t
 within_cutoff_avx2(const double* x, const double* y, const double* z, std::uint32_t count,
                    double ax, double ay, double az, double cutoff_sq, std::uint32_t* hits,
-                   double* hit_d_sq) {
+                   double* hit_d_sq, std::uint32_t label) {
     const __m256d vax = _mm256_set1_pd(ax), vay = _mm256_set1_pd(ay), vaz = _mm256_set1_pd(az);
     const __m256d vcut = _mm256_set1_pd(cutoff_sq);
     std::uint32_t found = 0;
@@ -85,33 +106,98 @@ within_cutoff_avx2(const double* x, const double* y, const double* z, std::uint3
                          _mm256_castps_pd(_mm256_permutevar8x32_ps(_mm256_castpd_ps(d_sq), order)));
         const __m128i positions = _mm_add_epi32(
             _mm_load_si128(reinterpret_cast<const __m128i*>(compress_tables.positions[mask])),
-            _mm_set1_epi32(static_cast<int>(k)));
+            _mm_set1_epi32(static_cast<int>(label + k)));
         _mm_storeu_si128(reinterpret_cast<__m128i*>(hits + found), positions);
         found += static_cast<std::uint32_t>(__builtin_popcount(static_cast<unsigned>(mask)));
     }
     for (; k < count; ++k) {
         const double dx = x[k] - ax, dy = y[k] - ay, dz = z[k] - az;
         const double d_sq = dx * dx + dy * dy + dz * dz;
-        hits[found] = k;
+        hits[found] = label + k;
         hit_d_sq[found] = d_sq;
         found += d_sq < cutoff_sq ? 1u : 0u;
     }
     return found;
 }
 
+__attribute__((target("avx2"))) std::uint32_t
+within_cutoff_one_avx2(const double* x, const double* y, const double* z, std::uint32_t count,
+                       double ax, double ay, double az, double cutoff_sq, std::uint32_t* hits,
+                       double* hit_d_sq) {
+    return within_cutoff_avx2(x, y, z, count, ax, ay, az, cutoff_sq, hits, hit_d_sq, 0);
+}
+
+__attribute__((target("avx2"))) std::uint32_t
+within_cutoff_group_avx2(const double* x, const double* y, const double* z, std::uint32_t count,
+                         const double* ax, const double* ay, const double* az, std::uint32_t group,
+                         double cutoff_sq, std::uint32_t* hits, double* hit_d_sq) {
+    std::uint32_t found = 0;
+    for (std::uint32_t g = 0; g < group; ++g) {
+        found += within_cutoff_avx2(x, y, z, count, ax[g], ay[g], az[g], cutoff_sq, hits + found,
+                                    hit_d_sq + found, g * kernel_block);
+    }
+    return found;
+}
+
+__attribute__((target("avx"))) void square_roots_avx(const double* in, std::uint32_t count,
+                                                     double* out) {
+    std::uint32_t k = 0;
+    for (; k + 4 <= count; k += 4) {
+        _mm256_storeu_pd(out + k, _mm256_sqrt_pd(_mm256_loadu_pd(in + k)));
+    }
+    for (; k < count; ++k) {
+        _mm_store_sd(out + k, _mm_sqrt_sd(_mm_setzero_pd(), _mm_load_sd(in + k)));
+    }
+}
+
 #endif
+
+void square_roots_generic(const double* in, std::uint32_t count, double* out) {
+    for (std::uint32_t k = 0; k < count; ++k) {
+        out[k] = std::sqrt(in[k]);
+    }
+}
+
+using SquareRoots = void (*)(const double*, std::uint32_t, double*);
+
+SquareRoots choose_square_roots() {
+#ifdef TRICELL_HAVE_AVX2_KERNEL
+    __builtin_cpu_init();
+    if (__builtin_cpu_supports("avx")) {
+        return square_roots_avx;
+    }
+#endif
+    return square_roots_generic;
+}
+
+const SquareRoots square_roots_kernel = choose_square_roots();
 
 Kernel choose_kernel() {
 #ifdef TRICELL_HAVE_AVX2_KERNEL
     __builtin_cpu_init();
     if (__builtin_cpu_supports("avx2")) {
-        return within_cutoff_avx2;
+        return within_cutoff_one_avx2;
     }
 #endif
-    return within_cutoff_generic;
+    return within_cutoff_one_generic;
 }
 
 const Kernel kernel = choose_kernel();
+
+using GroupKernel = std::uint32_t (*)(const double*, const double*, const double*, std::uint32_t,
+                                      const double*, const double*, const double*, std::uint32_t,
+                                      double, std::uint32_t*, double*);
+
+GroupKernel choose_group_kernel() {
+#ifdef TRICELL_HAVE_AVX2_KERNEL
+    if (kernel == within_cutoff_one_avx2) {
+        return within_cutoff_group_avx2;
+    }
+#endif
+    return within_cutoff_group_generic;
+}
+
+const GroupKernel group_kernel = choose_group_kernel();
 
 } // namespace
 
@@ -121,10 +207,29 @@ std::uint32_t within_cutoff(const double* x, const double* y, const double* z, s
     return kernel(x, y, z, count, ax, ay, az, cutoff_sq, hits, hit_d_sq);
 }
 
+std::uint32_t within_cutoff_group(const double* x, const double* y, const double* z,
+                                  std::uint32_t count, const double* ax, const double* ay,
+                                  const double* az, std::uint32_t group, double cutoff_sq,
+                                  std::uint32_t* hits, double* hit_d_sq) {
+    return group_kernel(x, y, z, count, ax, ay, az, group, cutoff_sq, hits, hit_d_sq);
+}
+
+std::uint32_t within_cutoff_group_portable(const double* x, const double* y, const double* z,
+                                           std::uint32_t count, const double* ax, const double* ay,
+                                           const double* az, std::uint32_t group, double cutoff_sq,
+                                           std::uint32_t* hits, double* hit_d_sq) {
+    return within_cutoff_group_generic(x, y, z, count, ax, ay, az, group, cutoff_sq, hits,
+                                       hit_d_sq);
+}
+
 std::uint32_t within_cutoff_portable(const double* x, const double* y, const double* z,
                                      std::uint32_t count, double ax, double ay, double az,
                                      double cutoff_sq, std::uint32_t* hits, double* hit_d_sq) {
-    return within_cutoff_generic(x, y, z, count, ax, ay, az, cutoff_sq, hits, hit_d_sq);
+    return within_cutoff_one_generic(x, y, z, count, ax, ay, az, cutoff_sq, hits, hit_d_sq);
+}
+
+void square_roots(const double* in, std::uint32_t count, double* out) {
+    square_roots_kernel(in, count, out);
 }
 
 double strict_threshold_sq(double cutoff) {
@@ -142,7 +247,7 @@ double strict_threshold_sq(double cutoff) {
 
 const char* distance_kernel_name() {
 #ifdef TRICELL_HAVE_AVX2_KERNEL
-    if (kernel == within_cutoff_avx2) {
+    if (kernel == within_cutoff_one_avx2) {
         return "avx2";
     }
 #endif

@@ -89,15 +89,22 @@ class CandidateScanner {
     void ranges(std::uint32_t a0, std::uint32_t a1, std::uint32_t b0, std::uint32_t b1,
                 const ImageShift& s, bool own) {
         tests_ += std::uint64_t(a1 - a0) * std::uint64_t(b1 - b0);
+        if (!own && b1 - b0 <= kernel_block) {
+            // Up to kernel_group atoms a in one kernel call; a longer range b goes one a at a
+            // time, so that the pairs keep their order (a, then b).
+            for (std::uint32_t a = a0; a < a1; a += kernel_group) {
+                scan(a, std::min(a + kernel_group, a1), b0, b1, s);
+            }
+            return;
+        }
         for (std::uint32_t a = a0; a < a1; ++a) {
-            const double ax = x_[a] - s.vx, ay = y_[a] - s.vy, az = z_[a] - s.vz;
             if (!own) {
-                scan(a, b0, b1, ax, ay, az, s);
+                scan(a, a + 1, b0, b1, s);
             } else if (half_) {
-                scan(a, a + 1, b1, ax, ay, az, s);
+                scan(a, a + 1, a + 1, b1, s);
             } else {
-                scan(a, b0, a, ax, ay, az, s);
-                scan(a, a + 1, b1, ax, ay, az, s);
+                scan(a, a + 1, b0, a, s);
+                scan(a, a + 1, a + 1, b1, s);
             }
         }
     }
@@ -142,58 +149,164 @@ class CandidateScanner {
     std::uint64_t tests() const { return tests_; }
 
   private:
-    void scan(std::uint32_t a, std::uint32_t from, std::uint32_t to, double ax, double ay,
-              double az, const ImageShift& s) {
-        std::uint32_t hits[kernel_block + 4];
-        double hit_d_sq[kernel_block + 4];
-        // What a hit needs of atom a, looked up once per range rather than once per pair (the
-        // image arithmetic was ~30 of the ~120 instructions per stored pair on diamond Si).
-        const std::uint32_t i = index_[a];
-        const int sa = s.s[0] + image_[3 * a];
-        const int sb = s.s[1] + image_[3 * a + 1];
-        const int sc = s.s[2] + image_[3 * a + 2];
+    // What a hit needs of the atoms a of one scan, looked up once per scan rather than once per
+    // pair (the image arithmetic was ~30 of the ~120 instructions per stored pair on diamond
+    // Si): the position relative to s and, for the caller, the index and s + image.
+    struct Side {
+        double x[kernel_group], y[kernel_group], z[kernel_group];
+        std::uint32_t i[kernel_group];
+        int sa[kernel_group], sb[kernel_group], sc[kernel_group];
+    };
+
+    // Atoms a in [a_first, a_last) (at most kernel_group; only one when to - from may pass
+    // kernel_block) against b in [from, to) through s, one kernel block at a time.
+    void scan(std::uint32_t a_first, std::uint32_t a_last, std::uint32_t from, std::uint32_t to,
+              const ImageShift& s) {
+        if (from >= to) {
+            return;
+        }
+        Side side;
+        const std::uint32_t group = a_last - a_first;
+        for (std::uint32_t g = 0; g < group; ++g) {
+            const std::uint32_t a = a_first + g;
+            side.x[g] = x_[a] - s.vx;
+            side.y[g] = y_[a] - s.vy;
+            side.z[g] = z_[a] - s.vz;
+            side.i[g] = index_[a];
+            side.sa[g] = s.s[0] + image_[3 * a];
+            side.sb[g] = s.s[1] + image_[3 * a + 1];
+            side.sc[g] = s.s[2] + image_[3 * a + 2];
+        }
+        std::uint32_t hits[kernel_group * kernel_block + 4];
+        double hit_d_sq[kernel_group * kernel_block + 4];
         for (std::uint32_t start = from; start < to; start += kernel_block) {
             const std::uint32_t count = std::min(kernel_block, to - start);
-            const double* xs = x_ + start;
-            const double* ys = y_ + start;
-            const double* zs = z_ + start;
             const std::uint32_t found =
-                within_cutoff(xs, ys, zs, count, ax, ay, az, cutoff_sq_, hits, hit_d_sq);
-            for (std::uint32_t h = 0; h < found; ++h) {
-                const std::uint32_t k = hits[h];
-                hit(a, start + k, i, sa, sb, sc, s, xs[k] - ax, ys[k] - ay, zs[k] - az,
-                    hit_d_sq[h]);
+                within_cutoff_group(x_ + start, y_ + start, z_ + start, count, side.x, side.y,
+                                    side.z, group, cutoff_sq_, hits, hit_d_sq);
+            if (found == 0) {
+                continue;
+            }
+            if (!half_ && rule_.uniform()) {
+                keep_all(side, start, hits, hit_d_sq, found);
+            } else {
+                keep_some(side, a_first, start, hits, hit_d_sq, found, s);
             }
         }
     }
 
-    // A hit (a, b) through s; i is a's caller index and (sa_a, sb_a, sc_a) = s + image of a.
-    void hit(std::uint32_t a, std::uint32_t b, std::uint32_t i, int sa_a, int sb_a, int sc_a,
-             const ImageShift& s, double dx, double dy, double dz, double d_sq) {
-        std::uint32_t j = index_[b];
-        int sa = sa_a - image_[3 * b];
-        int sb = sb_a - image_[3 * b + 1];
-        int sc = sc_a - image_[3 * b + 2];
-        if (half_ && flip(i, j, sa, sb, sc)) {
-            // Report (j, i, -S), with D computed in that orientation, x_a - (x_b - H (-s)), so
-            // that d and D do not depend on which atom a backend happened to scan first (the
-            // contract: identical d and D whatever the backend). The test is redone on it.
-            std::swap(i, j);
-            sa = -sa;
-            sb = -sb;
-            sc = -sc;
-            dx = x_[a] - (x_[b] + s.vx);
-            dy = y_[a] - (y_[b] + s.vy);
-            dz = z_[a] - (z_[b] + s.vz);
-            d_sq = dx * dx + dy * dy + dz * dz;
-            if (!(d_sq < cutoff_sq_)) {
-                return;
+    // The hits of a block of which some may not count (a half list orients each pair and
+    // drops the rare one whose test fails in the other orientation; a variable cutoff drops
+    // more): pair by pair, but with the block's places claimed once, D computed only when
+    // stored and the square roots taken together at the end.
+    void keep_some(const Side& side, std::uint32_t a_first, std::uint32_t start,
+                   const std::uint32_t* hits, const double* d_sq, std::uint32_t found,
+                   const ImageShift& s) {
+        const PairSink::Slots out = sink_.claim(found);
+        double kept_d_sq[kernel_group * kernel_block];
+        std::uint32_t kept = 0;
+        for (std::uint32_t h = 0; h < found; ++h) {
+            const std::uint32_t g = hits[h] / kernel_block;
+            const std::uint32_t b = start + hits[h] % kernel_block;
+            Hit p = make_hit(b, side.i[g], side.sa[g], side.sb[g], side.sc[g], 0, 0, 0, d_sq[h]);
+            if (out.vectors != nullptr) {
+                p.dx = x_[b] - side.x[g];
+                p.dy = y_[b] - side.y[g];
+                p.dz = z_[b] - side.z[g];
+            }
+            if (!counts(a_first + g, b, s, p)) {
+                continue;
+            }
+            PairSink::put(out, kept, p.i, p.j, p.sa, p.sb, p.sc, p.dx, p.dy, p.dz);
+            kept_d_sq[kept++] = p.d_sq;
+        }
+        PairSink::put_distances(out, kept_d_sq, kept);
+        sink_.commit(kept);
+    }
+
+    // A full list with a uniform cutoff keeps every hit of a block as it is, so each column is
+    // filled by its own short loop (pair by pair through PairSink::put(), the branches per
+    // stored column and the scalar square root cost more than the stores themselves).
+    void keep_all(const Side& side, std::uint32_t start, const std::uint32_t* hits,
+                  const double* d_sq, std::uint32_t found) {
+        const PairSink::Slots out = sink_.claim(found);
+        for (std::uint32_t h = 0; h < found; ++h) {
+            out.i[h] = side.i[hits[h] / kernel_block];
+            out.j[h] = index_[start + hits[h] % kernel_block];
+        }
+        if (out.shifts != nullptr) {
+            for (std::uint32_t h = 0; h < found; ++h) {
+                const std::uint32_t g = hits[h] / kernel_block;
+                const std::int32_t* image =
+                    image_ + 3 * std::size_t(start + hits[h] % kernel_block);
+                out.shifts[3 * h] = side.sa[g] - image[0];
+                out.shifts[3 * h + 1] = side.sb[g] - image[1];
+                out.shifts[3 * h + 2] = side.sc[g] - image[2];
             }
         }
-        if (!rule_.uniform() && !rule_.accepts(i, j, d_sq)) {
-            return;
+        PairSink::put_distances(out, d_sq, found);
+        if (out.vectors != nullptr) {
+            for (std::uint32_t h = 0; h < found; ++h) {
+                const std::uint32_t g = hits[h] / kernel_block;
+                const std::uint32_t b = start + hits[h] % kernel_block;
+                out.vectors[3 * h] = x_[b] - side.x[g];
+                out.vectors[3 * h + 1] = y_[b] - side.y[g];
+                out.vectors[3 * h + 2] = z_[b] - side.z[g];
+            }
         }
-        sink_.add(i, j, sa, sb, sc, dx, dy, dz, d_sq);
+        sink_.commit(found);
+    }
+
+    // A candidate within the cutoff, as it would be stored: i, j, S (s plus the images), D, d^2.
+    struct Hit {
+        std::uint32_t i, j;
+        int sa, sb, sc;
+        double dx, dy, dz, d_sq;
+    };
+
+    // The hit of b and the atom with caller index i whose s + image is (sa_a, sb_a, sc_a).
+    Hit make_hit(std::uint32_t b, std::uint32_t i, int sa_a, int sb_a, int sc_a, double dx,
+                 double dy, double dz, double d_sq) const {
+        return Hit{i,
+                   index_[b],
+                   sa_a - image_[3 * b],
+                   sb_a - image_[3 * b + 1],
+                   sc_a - image_[3 * b + 2],
+                   dx,
+                   dy,
+                   dz,
+                   d_sq};
+    }
+
+    // Whether hit p of (a, b) through s counts, oriented for a half list: a half list reports
+    // (j, i, -S) when that is the canonical orientation, with D computed in that orientation,
+    // x_a - (x_b - H (-s)), so that d and D do not depend on which atom a backend happened to
+    // scan first (the contract: identical d and D whatever the backend); the test is redone on
+    // it. Then a variable cutoff decides.
+    bool counts(std::uint32_t a, std::uint32_t b, const ImageShift& s, Hit& p) const {
+        if (half_ && flip(p.i, p.j, p.sa, p.sb, p.sc)) {
+            std::swap(p.i, p.j);
+            p.sa = -p.sa;
+            p.sb = -p.sb;
+            p.sc = -p.sc;
+            p.dx = x_[a] - (x_[b] + s.vx);
+            p.dy = y_[a] - (y_[b] + s.vy);
+            p.dz = z_[a] - (z_[b] + s.vz);
+            p.d_sq = p.dx * p.dx + p.dy * p.dy + p.dz * p.dz;
+            if (!(p.d_sq < cutoff_sq_)) {
+                return false;
+            }
+        }
+        return rule_.uniform() || rule_.accepts(p.i, p.j, p.d_sq);
+    }
+
+    // A hit (a, b) through s found one pair at a time.
+    void hit(std::uint32_t a, std::uint32_t b, std::uint32_t i, int sa_a, int sb_a, int sc_a,
+             const ImageShift& s, double dx, double dy, double dz, double d_sq) {
+        Hit p = make_hit(b, i, sa_a, sb_a, sc_a, dx, dy, dz, d_sq);
+        if (counts(a, b, s, p)) {
+            sink_.add(p.i, p.j, p.sa, p.sb, p.sc, p.dx, p.dy, p.dz, p.d_sq);
+        }
     }
 
     // Half lists keep (i, j, S) with i < j, or i == j with S lexicographically positive in the

@@ -6,12 +6,14 @@
 // way add() is the same few stores; only the rare "full" path differs.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 
 #include <Eigen/Core>
 
+#include "tricell/detail/distance_kernel.hpp"
 #include "tricell/error.hpp"
 #include "tricell/neighbor_list.hpp"
 
@@ -35,7 +37,9 @@ struct PairColumns {
 
 class PairSink {
   public:
-    static constexpr std::size_t block_size = 256;
+    /// Pairs per block in block mode: at least one kernel call's hits (CandidateScanner claims
+    /// them at once).
+    static constexpr std::size_t block_size = kernel_group * kernel_block;
 
     /// Storing mode: appends to `columns` after their first `start` pairs (kept), starting with
     /// room for `initial` more, never more than `limit` pairs in all (0: no limit).
@@ -59,27 +63,76 @@ class PairSink {
         capacity_ = block_size;
     }
 
+    /// The next places in each column (null: a column not stored); `squares`: distances holds
+    /// d^2 (block mode), not d.
+    struct Slots {
+        std::uint32_t* i;
+        std::uint32_t* j;
+        std::int32_t* shifts; ///< 3 per pair
+        double* distances;
+        double* vectors; ///< 3 per pair
+        bool squares;
+    };
+
+    /// Places for `count` more pairs, which the caller fills (put()) and then commit()s, at most
+    /// `count` of them. Makes room first: storing mode grows the columns, block mode hands out
+    /// the current block (`count` <= block_size).
+    Slots claim(std::size_t count) {
+        if (capacity_ - size_ < count) {
+            make_room(count);
+        }
+        return Slots{pi_ + size_,
+                     pj_ + size_,
+                     ps_ != nullptr ? ps_ + 3 * size_ : nullptr,
+                     pd_ != nullptr ? pd_ + size_ : nullptr,
+                     pv_ != nullptr ? pv_ + 3 * size_ : nullptr,
+                     store_squares_};
+    }
+
+    /// Writes pair k of claimed slots, all but its distance (put_distances()).
+    static void put(const Slots& out, std::size_t k, std::uint32_t i, std::uint32_t j, int sa,
+                    int sb, int sc, double dx, double dy, double dz) {
+        out.i[k] = i;
+        out.j[k] = j;
+        if (out.shifts != nullptr) {
+            out.shifts[3 * k] = sa;
+            out.shifts[3 * k + 1] = sb;
+            out.shifts[3 * k + 2] = sc;
+        }
+        if (out.vectors != nullptr) {
+            out.vectors[3 * k] = dx;
+            out.vectors[3 * k + 1] = dy;
+            out.vectors[3 * k + 2] = dz;
+        }
+    }
+
+    /// Writes the distances of the first `count` claimed pairs from their d^2 (the square roots
+    /// taken together, see square_roots()).
+    static void put_distances(const Slots& out, const double* d_sq, std::size_t count) {
+        if (out.distances == nullptr) {
+            return;
+        }
+        if (out.squares) {
+            std::copy(d_sq, d_sq + count, out.distances);
+        } else {
+            square_roots(d_sq, static_cast<std::uint32_t>(count), out.distances);
+        }
+    }
+
+    /// Keeps the first `count` claimed pairs; a stored list refuses to pass max_pairs here.
+    void commit(std::size_t count) {
+        size_ += count;
+        if (limit_ != 0 && size_ > limit_) {
+            fail_list_over_limit(limit_);
+        }
+    }
+
     void add(std::uint32_t i, std::uint32_t j, int sa, int sb, int sc, double dx, double dy,
              double dz, double d_sq) {
-        if (size_ == capacity_) {
-            full();
-        }
-        pi_[size_] = i;
-        pj_[size_] = j;
-        if (ps_ != nullptr) {
-            ps_[3 * size_] = sa;
-            ps_[3 * size_ + 1] = sb;
-            ps_[3 * size_ + 2] = sc;
-        }
-        if (pd_ != nullptr) {
-            pd_[size_] = store_squares_ ? d_sq : std::sqrt(d_sq);
-        }
-        if (pv_ != nullptr) {
-            pv_[3 * size_] = dx;
-            pv_[3 * size_ + 1] = dy;
-            pv_[3 * size_ + 2] = dz;
-        }
-        ++size_;
+        const Slots out = claim(1);
+        put(out, 0, i, j, sa, sb, sc, dx, dy, dz);
+        put_distances(out, &d_sq, 1);
+        commit(1);
     }
 
     /// Pairs in the columns so far, `start` included (storing mode), or in the current block
@@ -96,17 +149,15 @@ class PairSink {
     }
 
   private:
-    void full() {
+    void make_room(std::size_t count) {
         if (on_block_ != nullptr) {
             flush();
             return;
         }
-        if (limit_ != 0 && capacity_ >= limit_) {
-            fail_list_over_limit(limit_);
-        }
-        std::size_t next = std::max<std::size_t>(1024, capacity_ * 2);
+        // Past max_pairs only by the claim at hand (commit() refuses when it is used).
+        std::size_t next = std::max({std::size_t(1024), capacity_ * 2, size_ + count});
         if (limit_ != 0) {
-            next = std::min(next, limit_);
+            next = std::max(std::min(next, limit_), size_ + count);
         }
         resize(next);
     }

@@ -1,3 +1,5 @@
+#include <cmath>
+#include <iterator>
 #include <random>
 #include <vector>
 
@@ -39,6 +41,70 @@ TEST(DistanceKernel, SelectedKernelMatchesPortableKernelBitForBit) {
             ASSERT_EQ(hits_a[h], hits_b[h]);
             ASSERT_EQ(d_a[h], d_b[h]);
             ASSERT_LT(d_a[h], cutoff_sq);
+        }
+    }
+}
+
+// square_roots() (AVX where the processor has it) is std::sqrt value for value, for every count
+// (the vector groups and the tail) and for zeros, denormals, huge values and infinity.
+TEST(DistanceKernel, SquareRootsMatchStdSqrtBitForBit) {
+    std::mt19937_64 rng(23);
+    std::uniform_real_distribution<double> u(0, 40);
+    const double special[] = {0.0, 4.9e-324, 2.2e-308, 1e-300, 1.0, 2.0, 1e300, 1.7e308, HUGE_VAL};
+    for (std::uint32_t count = 0; count <= kernel_block + 3; ++count) {
+        std::vector<double> in(count), out(count, -1.0);
+        for (std::uint32_t k = 0; k < count; ++k) {
+            in[k] = k % 5 == 0 ? special[(k / 5) % std::size(special)] : u(rng);
+        }
+        tricell::detail::square_roots(in.data(), count, out.data());
+        for (std::uint32_t k = 0; k < count; ++k) {
+            ASSERT_EQ(out[k], std::sqrt(in[k])) << "count " << count << " value " << in[k];
+        }
+    }
+}
+
+// The group kernel (several points against one range) gives, point by point and in order, what
+// the one-point kernel gives, labelled g * kernel_block + k, for every group size and range
+// length, with the selected and the portable version alike.
+TEST(DistanceKernel, GroupKernelMatchesOnePointCallsInOrder) {
+    using tricell::detail::kernel_group;
+    std::mt19937_64 rng(29);
+    std::uniform_real_distribution<double> u(-3, 3);
+    for (int trial = 0; trial < 1500; ++trial) {
+        SCOPED_TRACE(trial);
+        const std::uint32_t count = std::uint32_t(trial) % (kernel_block + 1);
+        const std::uint32_t group = 1 + std::uint32_t(trial / 7) % kernel_group;
+        std::vector<double> x(count), y(count), z(count), ax(group), ay(group), az(group);
+        for (std::uint32_t k = 0; k < count; ++k) {
+            x[k] = u(rng), y[k] = u(rng), z[k] = u(rng);
+        }
+        for (std::uint32_t g = 0; g < group; ++g) {
+            ax[g] = u(rng) / 2, ay[g] = u(rng) / 2, az[g] = u(rng) / 2;
+        }
+        std::vector<std::uint32_t> expected_hits;
+        std::vector<double> expected_d;
+        for (std::uint32_t g = 0; g < group; ++g) {
+            std::uint32_t hits[kernel_block + 4];
+            double d[kernel_block + 4];
+            const std::uint32_t found = tricell::detail::within_cutoff_portable(
+                x.data(), y.data(), z.data(), count, ax[g], ay[g], az[g], 4.0, hits, d);
+            for (std::uint32_t h = 0; h < found; ++h) {
+                expected_hits.push_back(g * kernel_block + hits[h]);
+                expected_d.push_back(d[h]);
+            }
+        }
+        for (auto kernel : {tricell::detail::within_cutoff_group,
+                            tricell::detail::within_cutoff_group_portable}) {
+            std::vector<std::uint32_t> hits(group * count + 4);
+            std::vector<double> d(group * count + 4);
+            const std::uint32_t found =
+                kernel(x.data(), y.data(), z.data(), count, ax.data(), ay.data(), az.data(), group,
+                       4.0, hits.data(), d.data());
+            ASSERT_EQ(found, expected_hits.size());
+            for (std::uint32_t h = 0; h < found; ++h) {
+                ASSERT_EQ(hits[h], expected_hits[h]);
+                ASSERT_EQ(d[h], expected_d[h]);
+            }
         }
     }
 }
