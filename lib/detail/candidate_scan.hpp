@@ -180,10 +180,12 @@ class CandidateScanner {
             if (found == 0) {
                 continue;
             }
-            if (!half_ && rule_.uniform()) {
+            if (!rule_.uniform()) {
+                keep_some(side, a_first, start, hits, hit_d_sq, found, s);
+            } else if (!half_) {
                 keep_all(side, start, hits, hit_d_sq, found);
             } else {
-                keep_some(side, a_first, start, hits, hit_d_sq, found, s);
+                keep_oriented(side, a_first, start, hits, hit_d_sq, found, s);
             }
         }
     }
@@ -230,6 +232,60 @@ class CandidateScanner {
         }
         PairSink::put_distances(out, kept_d_sq, kept);
         sink_.commit(kept);
+    }
+
+    // A half list with a uniform cutoff: keep_some() in passes over the block. Which
+    // orientation a pair takes is a coin toss (caller indices against the backend's order), so
+    // the first pass writes i, j and S of either without a branch and lists the pairs turned
+    // around; only those have D and d^2 computed again, in their own orientation (see counts()).
+    // In the rare block where that second test fails, keep_some() redoes the block (it reads
+    // d^2 only of the pairs not turned around, which this leaves as they were).
+    void keep_oriented(const Side& side, std::uint32_t a_first, std::uint32_t start,
+                       const std::uint32_t* hits, double* d_sq, std::uint32_t found,
+                       const ImageShift& s) {
+        const PairSink::Slots out = sink_.claim(found);
+        if (out.vectors != nullptr) {
+            keep_some(side, a_first, start, hits, d_sq, found, s);
+            return;
+        }
+        std::uint32_t turned[kernel_group * kernel_block];
+        std::uint32_t turns = 0;
+        for (std::uint32_t h = 0; h < found; ++h) {
+            const std::uint32_t g = hits[h] / kernel_block;
+            const std::uint32_t b = start + hits[h] % kernel_block;
+            const std::uint32_t i = side.i[g], j = index_[b];
+            const int sa = side.sa[g] - image_[3 * b];
+            const int sb = side.sb[g] - image_[3 * b + 1];
+            const int sc = side.sc[g] - image_[3 * b + 2];
+            const bool other = flip(i, j, sa, sb, sc);
+            const int sign = other ? -1 : 1;
+            out.i[h] = other ? j : i;
+            out.j[h] = other ? i : j;
+            if (out.shifts != nullptr) {
+                out.shifts[3 * h] = sign * sa;
+                out.shifts[3 * h + 1] = sign * sb;
+                out.shifts[3 * h + 2] = sign * sc;
+            }
+            turned[turns] = h;
+            turns += other ? 1u : 0u;
+        }
+        bool all_count = true;
+        for (std::uint32_t t = 0; t < turns; ++t) {
+            const std::uint32_t h = turned[t];
+            const std::uint32_t a = a_first + hits[h] / kernel_block;
+            const std::uint32_t b = start + hits[h] % kernel_block;
+            const double dx = x_[a] - (x_[b] + s.vx);
+            const double dy = y_[a] - (y_[b] + s.vy);
+            const double dz = z_[a] - (z_[b] + s.vz);
+            d_sq[h] = dx * dx + dy * dy + dz * dz;
+            all_count = all_count && d_sq[h] < cutoff_sq_;
+        }
+        if (!all_count) {
+            keep_some(side, a_first, start, hits, d_sq, found, s);
+            return;
+        }
+        PairSink::put_distances(out, d_sq, found);
+        sink_.commit(found);
     }
 
     // A full list with a uniform cutoff keeps every hit of a block as it is, so each column is
