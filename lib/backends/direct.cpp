@@ -94,8 +94,8 @@ class DirectBackend final : public Backend {
                 // roots can lie far outside an int, on either side of [-m, m] (an interval wholly
                 // above or below it is empty); a NaN root (a row that overflowed) scans all of
                 // [-m, m], which the exact test below filters.
-                const auto bound = [](double v, double lo, double hi, double nan) {
-                    return int(std::isnan(v) ? nan : std::clamp(v, lo, hi));
+                const auto bound = [](double v, double low, double high, double nan) {
+                    return int(std::isnan(v) ? nan : std::clamp(v, low, high));
                 };
                 const double mc = m[2];
                 const int sc_lo = bound(std::floor((-ac - root) / cc) - 1, -mc, mc + 1, -mc);
