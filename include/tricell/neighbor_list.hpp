@@ -29,6 +29,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <new>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -130,13 +131,26 @@ struct Pair {
 };
 
 namespace detail {
+/// Memory for a pair array (pair_memory.cpp): a large one is asked for in huge pages.
+TRICELL_API void* allocate_pair_memory(std::size_t bytes);
+/// Frees what allocate_pair_memory(bytes) returned, with the same `bytes`.
+TRICELL_API void free_pair_memory(void* memory, std::size_t bytes) noexcept;
+
 /// An allocator that leaves new elements of trivial types uninitialised, so that growing a pair
-/// array does not first write zeros over memory that is about to be overwritten.
+/// array does not first write zeros over memory that is about to be overwritten, and that puts
+/// large arrays in huge pages.
 template <class T> struct UninitializedAllocator : std::allocator<T> {
     template <class U> struct rebind { using other = UninitializedAllocator<U>; };
     UninitializedAllocator() = default;
     template <class U>
     UninitializedAllocator(const UninitializedAllocator<U>&) noexcept {} // NOLINT
+    T* allocate(std::size_t n) {
+        if (n > std::size_t(-1) / sizeof(T)) {
+            throw std::bad_array_new_length();
+        }
+        return static_cast<T*>(allocate_pair_memory(n * sizeof(T)));
+    }
+    void deallocate(T* p, std::size_t n) noexcept { free_pair_memory(p, n * sizeof(T)); }
     template <class U> void construct(U* p) noexcept { ::new (static_cast<void*>(p)) U; }
     template <class U, class... Args> void construct(U* p, Args&&... args) {
         ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
