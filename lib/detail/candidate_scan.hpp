@@ -276,10 +276,8 @@ class CandidateScanner {
             const std::uint32_t h = turned[t];
             const std::uint32_t a = a_first + hits[h] / kernel_block;
             const std::uint32_t b = start + hits[h] % kernel_block;
-            const double dx = x_[a] - (x_[b] + s.vx);
-            const double dy = y_[a] - (y_[b] + s.vy);
-            const double dz = z_[a] - (z_[b] + s.vz);
-            d_sq[h] = dx * dx + dy * dy + dz * dz;
+            double dx, dy, dz;
+            d_sq[h] = turned_around(a, b, s, dx, dy, dz);
             all_count = all_count && d_sq[h] < cutoff_sq_;
         }
         if (!all_count) {
@@ -355,15 +353,21 @@ class CandidateScanner {
             p.sa = -p.sa;
             p.sb = -p.sb;
             p.sc = -p.sc;
-            p.dx = x_[a] - (x_[b] + s.vx);
-            p.dy = y_[a] - (y_[b] + s.vy);
-            p.dz = z_[a] - (z_[b] + s.vz);
-            p.d_sq = p.dx * p.dx + p.dy * p.dy + p.dz * p.dz;
+            p.d_sq = turned_around(a, b, s, p.dx, p.dy, p.dz);
             if (!(p.d_sq < cutoff_sq_)) {
                 return false;
             }
         }
         return rule_.uniform() || rule_.accepts(p.i, p.j, p.d_sq);
+    }
+
+    // D of the pair (a, b) through s computed from b's side, x_a - (x_b - H (-s)), and its d^2.
+    double turned_around(std::uint32_t a, std::uint32_t b, const ImageShift& s, double& dx,
+                         double& dy, double& dz) const {
+        dx = x_[a] - (x_[b] + s.vx);
+        dy = y_[a] - (y_[b] + s.vy);
+        dz = z_[a] - (z_[b] + s.vz);
+        return dx * dx + dy * dy + dz * dz;
     }
 
     // A hit (a, b) through s found one pair at a time.
@@ -376,8 +380,9 @@ class CandidateScanner {
     }
 
     // Half lists keep (i, j, S) with i < j, or i == j with S lexicographically positive in the
-    // caller's frame; true when the found orientation is the other one. (A branch-free choice
-    // of orientation, both D computed, was measured: no faster on diamond Si or random atoms.)
+    // caller's frame; true when the found orientation is the other one. (Computing both
+    // orientations' D for every pair and choosing without a branch was measured no faster on
+    // diamond Si or random atoms; keep_oriented() recomputes only the pairs turned around.)
     bool flip(std::uint32_t i, std::uint32_t j, int sa, int sb, int sc) const {
         if (i != j) {
             return i > j;
