@@ -274,8 +274,8 @@ int main(int argc, char** argv) {
     const double radius = std::cbrt(3 * fraction / (4 * M_PI));
     const double radius_sq = radius * radius;
     const std::size_t calls = std::size_t(std::ceil(candidates / block));
-    std::uint32_t hits[block + 4];
-    double hit_d_sq[block + 4];
+    std::uint32_t hits[block + tricell::detail::kernel_slack];
+    double hit_d_sq[block + tricell::detail::kernel_slack];
     std::uint64_t found = 0;
     const double test_s = median_time(
         [&] {

@@ -167,8 +167,8 @@ class CandidateScanner {
             side.sb[g] = s.s[1] + image_[3 * a + 1];
             side.sc[g] = s.s[2] + image_[3 * a + 2];
         }
-        std::uint32_t hits[kernel_group * kernel_block + 4];
-        double hit_d_sq[kernel_group * kernel_block + 4];
+        std::uint32_t hits[kernel_group * kernel_block + kernel_slack];
+        double hit_d_sq[kernel_group * kernel_block + kernel_slack];
         for (std::uint32_t start = from; start < to; start += kernel_block) {
             const std::uint32_t count = std::min(kernel_block, to - start);
             std::uint32_t found =

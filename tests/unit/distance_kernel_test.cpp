@@ -25,8 +25,10 @@ TEST(DistanceKernel, SelectedKernelMatchesPortableKernelBitForBit) {
             x[1] = 2.0, y[1] = 0.0, z[1] = 0.0; // exactly at the cutoff: not a hit
         }
         const double cutoff_sq = 4.0;
-        std::uint32_t hits_a[kernel_block + 4], hits_b[kernel_block + 4];
-        double d_a[kernel_block + 4], d_b[kernel_block + 4];
+        std::uint32_t hits_a[kernel_block + tricell::detail::kernel_slack],
+            hits_b[kernel_block + tricell::detail::kernel_slack];
+        double d_a[kernel_block + tricell::detail::kernel_slack],
+            d_b[kernel_block + tricell::detail::kernel_slack];
         const std::uint32_t found_a = tricell::detail::within_cutoff(
             x.data(), y.data(), z.data(), count, 0, 0, 0, cutoff_sq, hits_a, d_a);
         const std::uint32_t found_b = tricell::detail::within_cutoff_portable(
@@ -84,8 +86,8 @@ TEST(DistanceKernel, GroupKernelMatchesOnePointCallsInOrder) {
         std::vector<std::uint32_t> expected_hits;
         std::vector<double> expected_d;
         for (std::uint32_t g = 0; g < group; ++g) {
-            std::uint32_t hits[kernel_block + 4];
-            double d[kernel_block + 4];
+            std::uint32_t hits[kernel_block + tricell::detail::kernel_slack];
+            double d[kernel_block + tricell::detail::kernel_slack];
             const std::uint32_t found = tricell::detail::within_cutoff_portable(
                 x.data(), y.data(), z.data(), count, ax[g], ay[g], az[g], 4.0, hits, d);
             for (std::uint32_t h = 0; h < found; ++h) {
@@ -95,8 +97,8 @@ TEST(DistanceKernel, GroupKernelMatchesOnePointCallsInOrder) {
         }
         for (auto kernel : {tricell::detail::within_cutoff_group,
                             tricell::detail::within_cutoff_group_portable}) {
-            std::vector<std::uint32_t> hits(group * count + 4);
-            std::vector<double> d(group * count + 4);
+            std::vector<std::uint32_t> hits(group * count + tricell::detail::kernel_slack);
+            std::vector<double> d(group * count + tricell::detail::kernel_slack);
             const std::uint32_t found =
                 kernel(x.data(), y.data(), z.data(), count, ax.data(), ay.data(), az.data(), group,
                        4.0, hits.data(), d.data());

@@ -1,8 +1,8 @@
 // The innermost loop of the neighbour search: which points of a contiguous struct-of-arrays
 // range lie within the cutoff of one point. Compiled once per instruction set in the library
-// and chosen at run time (AVX2 where the processor has it, portable C++ otherwise), so the default
-// build stays portable. Both versions compute d^2 = dx*dx + dy*dy + dz*dz in the same order
-// without fused multiply-adds, so their results are bit for bit the same.
+// and chosen at run time (AVX-512 or AVX2 where the processor has it, portable C++ otherwise), so
+// the default build stays portable. Both versions compute d^2 = dx*dx + dy*dy + dz*dz in the same
+// order without fused multiply-adds, so their results are bit for bit the same.
 #pragma once
 
 #include <cstdint>
@@ -11,8 +11,11 @@
 
 namespace tricell::detail {
 
-/// Largest `count` within_cutoff() accepts; `hits` and `hit_d_sq` need count + 4 slots.
+/// Largest `count` within_cutoff() accepts.
 constexpr std::uint32_t kernel_block = 64;
+/// Slots past the last hit that a kernel may write (it stores whole vectors): `hits` and
+/// `hit_d_sq` need count + kernel_slack slots.
+constexpr std::uint32_t kernel_slack = 8;
 
 /// For k in [0, count): if (x[k]-ax)^2 + (y[k]-ay)^2 + (z[k]-az)^2 < cutoff_sq, appends k to
 /// hits and the squared distance to hit_d_sq. Returns the number of hits. count <= kernel_block.
@@ -33,7 +36,8 @@ constexpr std::uint32_t kernel_group = 8;
 /// g in order: hit k of point g is appended as g * kernel_block + k. A cell of a few atoms
 /// against a row of its neighbours is one call instead of one per atom (the per-call cost
 /// was as large as the tests on diamond Si, whose rows hold ~20 atoms). group <=
-/// kernel_group, count <= kernel_block; hits and hit_d_sq need group * count + 4 slots.
+/// kernel_group, count <= kernel_block; hits and hit_d_sq need group * count + kernel_slack
+/// slots.
 TRICELL_API std::uint32_t within_cutoff_group(const double* x, const double* y, const double* z,
                                               std::uint32_t count, const double* ax,
                                               const double* ay, const double* az,
@@ -58,7 +62,7 @@ TRICELL_API void square_roots(const double* in, std::uint32_t count, double* out
 /// underflows. Requires a finite cutoff > 0.
 TRICELL_API double strict_threshold_sq(double cutoff);
 
-/// Name of the kernel chosen on this processor ("avx2" or "generic").
+/// Name of the kernel chosen on this processor ("avx512", "avx2" or "generic").
 TRICELL_API const char* distance_kernel_name();
 
 } // namespace tricell::detail
