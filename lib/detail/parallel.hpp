@@ -38,7 +38,7 @@ class ThreadTeam {
     ~ThreadTeam() {
         {
             std::lock_guard<std::mutex> lock(mutex_);
-            stop_ = true;
+            stop_.store(true, std::memory_order_relaxed);
         }
         wake_.notify_all();
         for (std::thread& w : helpers_) {
@@ -96,14 +96,14 @@ class ThreadTeam {
         } catch (...) { // could not start a thread: stop the started ones, then report
             {
                 std::lock_guard<std::mutex> lock(mutex_);
-                stop_ = true;
+                stop_.store(true, std::memory_order_relaxed);
             }
             wake_.notify_all();
             for (std::thread& w : helpers_) {
                 w.join();
             }
             helpers_.clear();
-            stop_ = false;
+            stop_.store(false, std::memory_order_relaxed);
             throw;
         }
     }
@@ -121,16 +121,21 @@ class ThreadTeam {
     void serve(std::size_t t) {
         std::uint64_t seen = 0;
         for (;;) {
-            for (int k = 0; k < spin_rounds && generation_.load(std::memory_order_acquire) == seen;
+            // Stopping is checked too: the team ends right after a call's last phase, and its
+            // end should not wait out the spin.
+            for (int k = 0;
+                 k < spin_rounds && generation_.load(std::memory_order_acquire) == seen &&
+                 !stop_.load(std::memory_order_relaxed);
                  ++k) {
                 std::this_thread::yield();
             }
             {
                 std::unique_lock<std::mutex> lock(mutex_);
                 wake_.wait(lock, [&] {
-                    return stop_ || generation_.load(std::memory_order_relaxed) != seen;
+                    return stop_.load(std::memory_order_relaxed) ||
+                           generation_.load(std::memory_order_relaxed) != seen;
                 });
-                if (stop_) {
+                if (stop_.load(std::memory_order_relaxed)) {
                     return;
                 }
             }
@@ -147,7 +152,7 @@ class ThreadTeam {
     std::vector<std::thread> helpers_;
     std::mutex mutex_;
     std::condition_variable wake_, done_;
-    bool stop_ = false; // guarded by mutex_
+    std::atomic<bool> stop_{false}; // written under mutex_
     std::atomic<std::uint64_t> generation_{0};
     std::atomic<std::size_t> remaining_{0};
     // The phase being run, set before generation_ moves on.
