@@ -364,7 +364,7 @@ void NeighborSearch::build(const Box& caller_box, PointsView positions,
 
     // Wrap into the box along periodic axes, remembering the image: x = wrapped + H image.
     std::vector<Eigen::Vector3d> fractional(n);
-    std::vector<std::int32_t> image(3 * n, 0);
+    PairArray<std::int32_t> image(3 * n); // every entry written below
     std::vector<Eigen::Vector3d> range_lower(threads), range_upper(threads);
     detail::parallel_ranges(n, threads, [&](std::size_t begin, std::size_t end, std::size_t t) {
         // The range's bounds are kept in locals and stored once: updated in place per atom, the

@@ -28,8 +28,9 @@ namespace tricell::detail {
 
 /// Positions in a backend's order (see above).
 struct AtomTable {
-    std::vector<double> x, y, z;
-    std::vector<std::int32_t> image;  ///< 3 per atom
+    // Left uninitialised when grown (every entry is written by the build, on its threads).
+    PairArray<double> x, y, z;
+    PairArray<std::int32_t> image;    ///< 3 per atom
     std::vector<std::uint32_t> index; ///< the caller's index of each atom
     std::size_t size() const { return index.size(); }
 };
