@@ -11,9 +11,6 @@ namespace tricell::detail {
 
 namespace {
 
-using Kernel = std::uint32_t (*)(const double*, const double*, const double*, std::uint32_t, double,
-                                 double, double, double, std::uint32_t*, double*);
-
 // Portable version: a vectorisable distance loop, then a branch-free compaction (the index is
 // always written, the count advances only on a hit).
 // (Hit k is recorded as label + k.)
@@ -222,66 +219,37 @@ SquareRoots choose_square_roots() {
 
 const SquareRoots square_roots_kernel = choose_square_roots();
 
-Kernel choose_kernel() {
+// The fastest this processor runs.
+const DistanceKernel chosen = distance_kernels().front();
+
+} // namespace
+
+std::vector<DistanceKernel> distance_kernels() {
+    std::vector<DistanceKernel> out;
 #ifdef TRICELL_HAVE_AVX2_KERNEL
     __builtin_cpu_init();
     if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl")) {
-        return within_cutoff_one_avx512;
+        out.push_back({"avx512", within_cutoff_one_avx512, within_cutoff_group_avx512});
     }
     if (__builtin_cpu_supports("avx2")) {
-        return within_cutoff_one_avx2;
+        out.push_back({"avx2", within_cutoff_one_avx2, within_cutoff_group_avx2});
     }
 #endif
-    return within_cutoff_one_generic;
+    out.push_back({"generic", within_cutoff_one_generic, within_cutoff_group_generic});
+    return out;
 }
-
-const Kernel kernel = choose_kernel();
-
-using GroupKernel = std::uint32_t (*)(const double*, const double*, const double*, std::uint32_t,
-                                      const double*, const double*, const double*, std::uint32_t,
-                                      double, std::uint32_t*, double*);
-
-GroupKernel choose_group_kernel() {
-#ifdef TRICELL_HAVE_AVX2_KERNEL
-    if (kernel == within_cutoff_one_avx512) {
-        return within_cutoff_group_avx512;
-    }
-    if (kernel == within_cutoff_one_avx2) {
-        return within_cutoff_group_avx2;
-    }
-#endif
-    return within_cutoff_group_generic;
-}
-
-const GroupKernel group_kernel = choose_group_kernel();
-
-} // namespace
 
 std::uint32_t within_cutoff(const double* x, const double* y, const double* z, std::uint32_t count,
                             double ax, double ay, double az, double cutoff_sq, std::uint32_t* hits,
                             double* hit_d_sq) {
-    return kernel(x, y, z, count, ax, ay, az, cutoff_sq, hits, hit_d_sq);
+    return chosen.one(x, y, z, count, ax, ay, az, cutoff_sq, hits, hit_d_sq);
 }
 
 std::uint32_t within_cutoff_group(const double* x, const double* y, const double* z,
                                   std::uint32_t count, const double* ax, const double* ay,
                                   const double* az, std::uint32_t group, double cutoff_sq,
                                   std::uint32_t* hits, double* hit_d_sq) {
-    return group_kernel(x, y, z, count, ax, ay, az, group, cutoff_sq, hits, hit_d_sq);
-}
-
-std::uint32_t within_cutoff_group_portable(const double* x, const double* y, const double* z,
-                                           std::uint32_t count, const double* ax, const double* ay,
-                                           const double* az, std::uint32_t group, double cutoff_sq,
-                                           std::uint32_t* hits, double* hit_d_sq) {
-    return within_cutoff_group_generic(x, y, z, count, ax, ay, az, group, cutoff_sq, hits,
-                                       hit_d_sq);
-}
-
-std::uint32_t within_cutoff_portable(const double* x, const double* y, const double* z,
-                                     std::uint32_t count, double ax, double ay, double az,
-                                     double cutoff_sq, std::uint32_t* hits, double* hit_d_sq) {
-    return within_cutoff_one_generic(x, y, z, count, ax, ay, az, cutoff_sq, hits, hit_d_sq);
+    return chosen.group(x, y, z, count, ax, ay, az, group, cutoff_sq, hits, hit_d_sq);
 }
 
 void square_roots(const double* in, std::uint32_t count, double* out) {
@@ -302,15 +270,7 @@ double strict_threshold_sq(double cutoff) {
 }
 
 const char* distance_kernel_name() {
-#ifdef TRICELL_HAVE_AVX2_KERNEL
-    if (kernel == within_cutoff_one_avx512) {
-        return "avx512";
-    }
-    if (kernel == within_cutoff_one_avx2) {
-        return "avx2";
-    }
-#endif
-    return "generic";
+    return chosen.name;
 }
 
 } // namespace tricell::detail

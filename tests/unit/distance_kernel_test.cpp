@@ -1,6 +1,7 @@
 #include <cmath>
 #include <iterator>
 #include <random>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -9,40 +10,49 @@
 
 using tricell::detail::kernel_block;
 
-// The run-time selected kernel (AVX2 on most machines) must agree bit for bit with the portable
-// one, for every block length including the scalar tail.
-TEST(DistanceKernel, SelectedKernelMatchesPortableKernelBitForBit) {
-    std::mt19937_64 rng(17);
-    std::uniform_real_distribution<double> u(-3, 3);
-    SCOPED_TRACE(tricell::detail::distance_kernel_name());
-    for (int trial = 0; trial < 2000; ++trial) {
-        const std::uint32_t count = std::uint32_t(trial) % (kernel_block + 1);
-        std::vector<double> x(count), y(count), z(count);
-        for (std::uint32_t k = 0; k < count; ++k) {
-            x[k] = u(rng), y[k] = u(rng), z[k] = u(rng);
-        }
-        if (count > 3) {
-            x[1] = 2.0, y[1] = 0.0, z[1] = 0.0; // exactly at the cutoff: not a hit
-        }
-        const double cutoff_sq = 4.0;
-        std::uint32_t hits_a[kernel_block + tricell::detail::kernel_slack],
-            hits_b[kernel_block + tricell::detail::kernel_slack];
-        double d_a[kernel_block + tricell::detail::kernel_slack],
-            d_b[kernel_block + tricell::detail::kernel_slack];
-        const std::uint32_t found_a = tricell::detail::within_cutoff(
-            x.data(), y.data(), z.data(), count, 0, 0, 0, cutoff_sq, hits_a, d_a);
-        const std::uint32_t found_b = tricell::detail::within_cutoff_portable(
-            x.data(), y.data(), z.data(), count, 0, 0, 0, cutoff_sq, hits_b, d_b);
-        ASSERT_EQ(found_a, found_b) << "trial " << trial;
-        std::uint32_t expected = 0;
-        for (std::uint32_t k = 0; k < count; ++k) {
-            expected += x[k] * x[k] + y[k] * y[k] + z[k] * z[k] < cutoff_sq ? 1u : 0u;
-        }
-        ASSERT_EQ(found_a, expected);
-        for (std::uint32_t h = 0; h < found_a; ++h) {
-            ASSERT_EQ(hits_a[h], hits_b[h]);
-            ASSERT_EQ(d_a[h], d_b[h]);
-            ASSERT_LT(d_a[h], cutoff_sq);
+using tricell::detail::distance_kernels;
+using tricell::detail::kernel_slack;
+
+// Every kernel this processor can run (AVX-512, AVX2, the portable one) must agree bit for bit
+// with the portable one, for every block length (the vector groups, the masked or scalar tail),
+// with hits exactly at the cutoff, and the first of them is the one the search uses.
+TEST(DistanceKernel, EveryKernelMatchesThePortableOneBitForBit) {
+    const auto kernels = distance_kernels();
+    ASSERT_EQ(std::string(kernels.front().name), tricell::detail::distance_kernel_name());
+    ASSERT_EQ(std::string(kernels.back().name), "generic");
+    for (const auto& kernel : kernels) {
+        SCOPED_TRACE(kernel.name);
+        std::mt19937_64 rng(17);
+        std::uniform_real_distribution<double> u(-3, 3);
+        for (int trial = 0; trial < 2000; ++trial) {
+            const std::uint32_t count = std::uint32_t(trial) % (kernel_block + 1);
+            const double ax = u(rng) / 3, ay = u(rng) / 3, az = u(rng) / 3;
+            std::vector<double> x(count), y(count), z(count);
+            for (std::uint32_t k = 0; k < count; ++k) {
+                x[k] = u(rng), y[k] = u(rng), z[k] = u(rng);
+            }
+            if (count > 3) {
+                x[1] = ax + 2.0, y[1] = ay, z[1] = az; // exactly at the cutoff: not a hit
+            }
+            const double cutoff_sq = 4.0;
+            std::uint32_t hits_a[kernel_block + kernel_slack], hits_b[kernel_block + kernel_slack];
+            double d_a[kernel_block + kernel_slack], d_b[kernel_block + kernel_slack];
+            const std::uint32_t found_a =
+                kernel.one(x.data(), y.data(), z.data(), count, ax, ay, az, cutoff_sq, hits_a, d_a);
+            const std::uint32_t found_b = kernels.back().one(x.data(), y.data(), z.data(), count,
+                                                             ax, ay, az, cutoff_sq, hits_b, d_b);
+            ASSERT_EQ(found_a, found_b) << "trial " << trial;
+            std::uint32_t expected = 0;
+            for (std::uint32_t k = 0; k < count; ++k) {
+                const double dx = x[k] - ax, dy = y[k] - ay, dz = z[k] - az;
+                expected += dx * dx + dy * dy + dz * dz < cutoff_sq ? 1u : 0u;
+            }
+            ASSERT_EQ(found_a, expected) << "trial " << trial;
+            for (std::uint32_t h = 0; h < found_a; ++h) {
+                ASSERT_EQ(hits_a[h], hits_b[h]);
+                ASSERT_EQ(d_a[h], d_b[h]);
+                ASSERT_LT(d_a[h], cutoff_sq);
+            }
         }
     }
 }
@@ -65,43 +75,44 @@ TEST(DistanceKernel, SquareRootsMatchStdSqrtBitForBit) {
     }
 }
 
-// The group kernel (several points against one range) gives, point by point and in order, what
-// the one-point kernel gives, labelled g * kernel_block + k, for every group size and range
-// length, with the selected and the portable version alike.
-TEST(DistanceKernel, GroupKernelMatchesOnePointCallsInOrder) {
+// Every group kernel (several points against one range) gives, point by point and in order,
+// what the portable one-point kernel gives, labelled g * kernel_block + k, for every group size
+// and range length.
+TEST(DistanceKernel, GroupKernelsMatchOnePointCallsInOrder) {
     using tricell::detail::kernel_group;
-    std::mt19937_64 rng(29);
-    std::uniform_real_distribution<double> u(-3, 3);
-    for (int trial = 0; trial < 1500; ++trial) {
-        SCOPED_TRACE(trial);
-        const std::uint32_t count = std::uint32_t(trial) % (kernel_block + 1);
-        const std::uint32_t group = 1 + std::uint32_t(trial / 7) % kernel_group;
-        std::vector<double> x(count), y(count), z(count), ax(group), ay(group), az(group);
-        for (std::uint32_t k = 0; k < count; ++k) {
-            x[k] = u(rng), y[k] = u(rng), z[k] = u(rng);
-        }
-        for (std::uint32_t g = 0; g < group; ++g) {
-            ax[g] = u(rng) / 2, ay[g] = u(rng) / 2, az[g] = u(rng) / 2;
-        }
-        std::vector<std::uint32_t> expected_hits;
-        std::vector<double> expected_d;
-        for (std::uint32_t g = 0; g < group; ++g) {
-            std::uint32_t hits[kernel_block + tricell::detail::kernel_slack];
-            double d[kernel_block + tricell::detail::kernel_slack];
-            const std::uint32_t found = tricell::detail::within_cutoff_portable(
-                x.data(), y.data(), z.data(), count, ax[g], ay[g], az[g], 4.0, hits, d);
-            for (std::uint32_t h = 0; h < found; ++h) {
-                expected_hits.push_back(g * kernel_block + hits[h]);
-                expected_d.push_back(d[h]);
+    const auto kernels = distance_kernels();
+    for (const auto& kernel : kernels) {
+        SCOPED_TRACE(kernel.name);
+        std::mt19937_64 rng(29);
+        std::uniform_real_distribution<double> u(-3, 3);
+        for (int trial = 0; trial < 1500; ++trial) {
+            SCOPED_TRACE(trial);
+            const std::uint32_t count = std::uint32_t(trial) % (kernel_block + 1);
+            const std::uint32_t group = 1 + std::uint32_t(trial / 7) % kernel_group;
+            std::vector<double> x(count), y(count), z(count), ax(group), ay(group), az(group);
+            for (std::uint32_t k = 0; k < count; ++k) {
+                x[k] = u(rng), y[k] = u(rng), z[k] = u(rng);
             }
-        }
-        for (auto kernel : {tricell::detail::within_cutoff_group,
-                            tricell::detail::within_cutoff_group_portable}) {
-            std::vector<std::uint32_t> hits(group * count + tricell::detail::kernel_slack);
-            std::vector<double> d(group * count + tricell::detail::kernel_slack);
+            for (std::uint32_t g = 0; g < group; ++g) {
+                ax[g] = u(rng) / 2, ay[g] = u(rng) / 2, az[g] = u(rng) / 2;
+            }
+            std::vector<std::uint32_t> expected_hits;
+            std::vector<double> expected_d;
+            for (std::uint32_t g = 0; g < group; ++g) {
+                std::uint32_t hits[kernel_block + kernel_slack];
+                double d[kernel_block + kernel_slack];
+                const std::uint32_t found = kernels.back().one(x.data(), y.data(), z.data(), count,
+                                                               ax[g], ay[g], az[g], 4.0, hits, d);
+                for (std::uint32_t h = 0; h < found; ++h) {
+                    expected_hits.push_back(g * kernel_block + hits[h]);
+                    expected_d.push_back(d[h]);
+                }
+            }
+            std::vector<std::uint32_t> hits(group * count + kernel_slack);
+            std::vector<double> d(group * count + kernel_slack);
             const std::uint32_t found =
-                kernel(x.data(), y.data(), z.data(), count, ax.data(), ay.data(), az.data(), group,
-                       4.0, hits.data(), d.data());
+                kernel.group(x.data(), y.data(), z.data(), count, ax.data(), ay.data(), az.data(),
+                             group, 4.0, hits.data(), d.data());
             ASSERT_EQ(found, expected_hits.size());
             for (std::uint32_t h = 0; h < found; ++h) {
                 ASSERT_EQ(hits[h], expected_hits[h]);

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "tricell/export.hpp"
 
@@ -23,12 +24,6 @@ TRICELL_API std::uint32_t within_cutoff(const double* x, const double* y, const 
                                         std::uint32_t count, double ax, double ay, double az,
                                         double cutoff_sq, std::uint32_t* hits, double* hit_d_sq);
 
-/// The portable version of within_cutoff(), whatever the processor (for tests).
-TRICELL_API std::uint32_t within_cutoff_portable(const double* x, const double* y, const double* z,
-                                                 std::uint32_t count, double ax, double ay,
-                                                 double az, double cutoff_sq, std::uint32_t* hits,
-                                                 double* hit_d_sq);
-
 /// Largest number of points within_cutoff_group() takes on its own side.
 constexpr std::uint32_t kernel_group = 8;
 
@@ -44,13 +39,20 @@ TRICELL_API std::uint32_t within_cutoff_group(const double* x, const double* y, 
                                               std::uint32_t group, double cutoff_sq,
                                               std::uint32_t* hits, double* hit_d_sq);
 
-/// The portable version of within_cutoff_group() (for tests).
-TRICELL_API std::uint32_t within_cutoff_group_portable(const double* x, const double* y,
-                                                       const double* z, std::uint32_t count,
-                                                       const double* ax, const double* ay,
-                                                       const double* az, std::uint32_t group,
-                                                       double cutoff_sq, std::uint32_t* hits,
-                                                       double* hit_d_sq);
+/// One instruction set's within_cutoff() and within_cutoff_group().
+struct DistanceKernel {
+    const char* name; ///< "avx512", "avx2" or "generic"
+    std::uint32_t (*one)(const double*, const double*, const double*, std::uint32_t, double, double,
+                         double, double, std::uint32_t*, double*);
+    std::uint32_t (*group)(const double*, const double*, const double*, std::uint32_t,
+                           const double*, const double*, const double*, std::uint32_t, double,
+                           std::uint32_t*, double*);
+};
+
+/// Every kernel this processor can run, fastest first: the first is the one within_cutoff()
+/// and within_cutoff_group() use, the last the portable one (for tests, which hold each to the
+/// portable one bit for bit).
+TRICELL_API std::vector<DistanceKernel> distance_kernels();
 
 /// out[k] = sqrt(in[k]) for k in [0, count), four at a time where the processor has AVX (sqrt is
 /// correctly rounded either way, so the results are the same bits; a scalar loop calls the
