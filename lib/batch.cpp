@@ -38,6 +38,8 @@ struct BatchWorker {
 [[noreturn]] void rethrow_for_structure(std::size_t s) {
     try {
         throw;
+    } catch (const PairLimitError& e) {
+        throw PairLimitError(cat("structure ", s, ": ", e.subject()), e.pairs(), e.limit());
     } catch (const InvalidArgument& e) {
         detail::fail<InvalidArgument>("structure ", s, ": ", e.what());
     } catch (const GeometryError& e) {
@@ -50,6 +52,10 @@ struct BatchWorker {
 } // namespace detail
 
 namespace {
+
+[[noreturn]] void fail_batch_over_limit(double pairs, std::size_t limit) {
+    throw PairLimitError("the batch has too many pairs in total", pairs, limit);
+}
 
 // Appends all of `from` to `to`.
 template <class T> void append(PairArray<T>& to, const PairArray<T>& from) {
@@ -147,9 +153,7 @@ void compute_neighbors_batch(const BatchStructure* structures, std::size_t count
                 w.search.compute(w.scratch);
                 const NeighborList& list = w.scratch;
                 if (options.max_pairs != 0 && columns.size() + list.size() > options.max_pairs) {
-                    detail::fail<InvalidArgument>(
-                        "the batch has more than max_pairs = ", options.max_pairs,
-                        " pairs in total; raise NeighborOptions::max_pairs to allow it");
+                    fail_batch_over_limit(double(columns.size() + list.size()), options.max_pairs);
                 }
                 append(columns.i, list.i());
                 append(columns.j, list.j());
@@ -197,9 +201,7 @@ void compute_neighbors_batch(const BatchStructure* structures, std::size_t count
             out.atom_offsets_[s + 1] = out.atom_offsets_[s] + structures[s].positions.size();
         }
         if (options.max_pairs != 0 && total > options.max_pairs) {
-            detail::fail<InvalidArgument>(
-                "the batch has more than max_pairs = ", options.max_pairs,
-                " pairs in total; raise NeighborOptions::max_pairs to allow it");
+            fail_batch_over_limit(double(total), options.max_pairs);
         }
 
         // Join the other runs' columns after run 0's, each run copied by its own thread.

@@ -423,10 +423,9 @@ void NeighborSearch::build(const Box& caller_box, PointsView positions,
                                // enforces max_pairs on the real count)
     }
     if (options.max_pairs != 0 && s.estimated_pairs > double(options.max_pairs)) {
-        detail::fail<InvalidArgument>(
-            "cutoff ", cutoff, " would give about ", s.estimated_pairs, " pairs for ", n,
-            " atoms (estimated from the density), more than max_pairs = ", options.max_pairs,
-            "; raise NeighborOptions::max_pairs to allow it");
+        throw PairLimitError(detail::cat("cutoff ", cutoff, " would give about ", s.estimated_pairs,
+                                         " pairs for ", n, " atoms (estimated from the density)"),
+                             s.estimated_pairs, options.max_pairs);
     }
 
     SearchBackend kind = options.backend;

@@ -22,8 +22,7 @@ namespace tricell::detail {
 /// The refusal of a stored list that outgrew NeighborOptions::max_pairs (the sink here and the
 /// threads' ordered output both throw it).
 [[noreturn]] inline void fail_list_over_limit(std::size_t limit) {
-    fail<InvalidArgument>("the neighbour list has more than max_pairs = ", limit,
-                          " pairs; raise NeighborOptions::max_pairs to allow it");
+    throw PairLimitError("the neighbour list has too many pairs", double(limit) + 1, limit);
 }
 
 /// The columns a storing sink fills (null: not stored).

@@ -356,7 +356,7 @@ TEST(NeighborList, ErrorLeavesOutputEmptyNotHalfWritten) {
     tricell::compute_neighbors(cube10, pair, with_cutoff(0.5), list);
     ASSERT_EQ(list.size(), 2u);
     EXPECT_THROW_MSG(tricell::compute_neighbors(cube10, x, o, list), tricell::InvalidArgument,
-                     "the neighbour list has more than max_pairs = 100 pairs");
+                     "the neighbour list has too many pairs, more than max_pairs = 100");
     EXPECT_TRUE(list.empty());
     EXPECT_TRUE(list.distances().empty());
     // The same with threads: each chunk stays below the limit, the total does not.
