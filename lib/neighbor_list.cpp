@@ -17,6 +17,7 @@
 #include <Eigen/LU>
 
 #include "backends/backend.hpp"
+#include "search/registry.hpp"
 #include "detail/lattice_reduction.hpp"
 #include "detail/list_writer.hpp"
 #include "detail/ordered_output.hpp"
@@ -45,7 +46,7 @@ struct SearchState {
     // The backend of the last build, null when no pair can count (all radii zero, ...). Each
     // kind's object is kept between builds so that its buffers are reused.
     Backend* backend = nullptr;
-    std::unique_ptr<Backend> pool[6];
+    BackendPool pool;
 };
 
 } // namespace detail
@@ -61,36 +62,6 @@ using detail::gather;
 using detail::ListWriter;
 
 } // namespace
-
-const char* backend_name(SearchBackend backend) {
-    switch (backend) {
-    case SearchBackend::automatic:
-        return "auto";
-    case SearchBackend::dense:
-        return "dense";
-    case SearchBackend::linked:
-        return "linked";
-    case SearchBackend::hash:
-        return "hash";
-    case SearchBackend::octree:
-        return "octree";
-    case SearchBackend::direct:
-        return "direct";
-    }
-    return "unknown";
-}
-
-SearchBackend parse_backend(const std::string& name) {
-    for (const SearchBackend b :
-         {SearchBackend::automatic, SearchBackend::dense, SearchBackend::linked,
-          SearchBackend::hash, SearchBackend::octree, SearchBackend::direct}) {
-        if (name == backend_name(b)) {
-            return b;
-        }
-    }
-    detail::fail<InvalidArgument>("unknown search backend '", name,
-                                  "' (expected auto, dense, linked, hash, octree or direct)");
-}
 
 void NeighborOptions::validate() const {
     if (!std::isfinite(cutoff)) {
@@ -148,12 +119,9 @@ void NeighborOptions::validate() const {
     if (leaf_size > (std::size_t(1) << 20)) {
         detail::fail<InvalidArgument>("leaf_size must be at most 2^20 (got ", leaf_size, ")");
     }
-    if (backend != SearchBackend::automatic && backend != SearchBackend::dense &&
-        backend != SearchBackend::linked && backend != SearchBackend::hash &&
-        backend != SearchBackend::octree && backend != SearchBackend::direct) {
-        detail::fail<InvalidArgument>("backend must be one of auto, dense, linked, hash, octree, "
-                                      "direct (got the value ",
-                                      static_cast<int>(backend), ")");
+    if (detail::find_backend(backend) == nullptr) {
+        detail::fail<InvalidArgument>("backend must be one of ", backend_choices(),
+                                      " (got the value ", static_cast<int>(backend), ")");
     }
 }
 
@@ -280,29 +248,6 @@ SearchBackend automatic_backend(const Box& box, const std::vector<Eigen::Vector3
 }
 
 } // namespace
-
-namespace detail {
-std::unique_ptr<Backend> make_dense_backend();
-std::unique_ptr<Backend> make_linked_backend();
-std::unique_ptr<Backend> make_hash_backend();
-std::unique_ptr<Backend> make_octree_backend();
-std::unique_ptr<Backend> make_direct_backend();
-
-std::unique_ptr<Backend> make_backend(SearchBackend kind) {
-    switch (kind) {
-    case SearchBackend::linked:
-        return make_linked_backend();
-    case SearchBackend::hash:
-        return make_hash_backend();
-    case SearchBackend::octree:
-        return make_octree_backend();
-    case SearchBackend::direct:
-        return make_direct_backend();
-    default:
-        return make_dense_backend();
-    }
-}
-} // namespace detail
 
 NeighborSearch::NeighborSearch() = default;
 NeighborSearch::~NeighborSearch() = default;
@@ -432,11 +377,7 @@ void NeighborSearch::build(const Box& caller_box, PointsView positions,
     if (kind == SearchBackend::automatic) {
         kind = automatic_backend(box, fractional, lower, upper, s.search_radius, options, n);
     }
-    std::unique_ptr<detail::Backend>& pooled = s.pool[static_cast<int>(kind)];
-    if (!pooled) {
-        pooled = detail::make_backend(kind);
-    }
-    s.backend = pooled.get();
+    s.backend = &s.pool.get(kind);
     std::vector<std::uint32_t> order;
     s.backend->bin(
         detail::BinningInput{box, fractional, lower, upper, s.search_radius, options, threads},

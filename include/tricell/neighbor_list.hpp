@@ -54,10 +54,14 @@ enum class SearchBackend {
     direct,    ///< no grid: every atom pair through every image that can hold a pair (tiny cells)
 };
 
+/// Every backend, `automatic` first, in the order of the library's one table of backends.
+TRICELL_API const std::vector<SearchBackend>& search_backends();
 /// "auto", "dense", "linked", "hash", "octree" or "direct".
 TRICELL_API const char* backend_name(SearchBackend backend);
 /// The backend of a name backend_name() returns; InvalidArgument naming the text otherwise.
 TRICELL_API SearchBackend parse_backend(const std::string& name);
+/// The names of search_backends() for messages and help texts: "auto, dense, ... or direct".
+TRICELL_API std::string backend_choices();
 
 /// Which per-pair quantities compute() stores besides i and j.
 struct Quantities {
