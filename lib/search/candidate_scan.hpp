@@ -20,7 +20,7 @@
 
 #include <Eigen/Core>
 
-#include "detail/pair_sink.hpp"
+#include "search/pair_sink.hpp"
 #include "tricell/detail/distance_kernel.hpp"
 #include "tricell/neighbor_list.hpp"
 
