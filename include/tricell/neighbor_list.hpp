@@ -47,7 +47,7 @@ namespace tricell {
 /// How atoms are binned and candidate pairs enumerated. Never changes the result, only the
 /// speed and memory (CONTRACT.md section 2).
 enum class SearchBackend {
-    automatic, ///< chosen per call from the cost model (include/tricell/cost_model.hpp)
+    automatic, ///< chosen per call by the search policy from the cost model
     dense,     ///< a dense cell grid (at most max_cells cells), atoms sorted by cell
     linked,    ///< the same grid as head/next chains (no reordering of the atoms)
     hash,      ///< compact hashing: only non-empty cells stored, full resolution, O(N) memory
@@ -110,9 +110,8 @@ struct TRICELL_API NeighborOptions {
     /// list is identical, pair for pair and in the same order, whatever the number of threads.
     /// (for_each_pair() always runs on the calling thread.) Threads asked for explicitly are
     /// always used; each build() and compute() (one for both in compute_neighbors()) starts its
-    /// helper threads once, which costs 20-70 us on a loaded machine: a search of a few thousand
-    /// atoms or more gains (diamond Si, 4096 atoms, rc 5: about 1.3-1.5x with two threads), a
-    /// smaller one is slower than on one thread (64 atoms: about 3x). Automatic threads (0) stay
+    /// helper threads once, which a search of a few thousand atoms or more outweighs and a
+    /// smaller one does not (benchmarks/README.md has the figures). Automatic threads (0) stay
     /// at one for small searches.
     int threads = 1;
 
@@ -189,7 +188,7 @@ struct SearchInfo {
 };
 
 /// Work of each unit threads split (cells, buckets or leaves, in visiting order): its atoms, the
-/// occupancy-moment estimate compute() balances (cost_model.hpp) and the distance tests its
+/// occupancy-moment estimate compute() balances (the cost model) and the distance tests its
 /// candidates really cost. For load-balance benchmarks and tests.
 struct UnitWork {
     std::vector<double> atoms;

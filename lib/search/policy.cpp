@@ -7,8 +7,8 @@
 #include <limits>
 #include <thread>
 
+#include "cost_model/cost_model.hpp"
 #include "detail/parallel.hpp"
-#include "tricell/cost_model.hpp"
 
 namespace tricell::detail {
 

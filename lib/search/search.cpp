@@ -16,6 +16,7 @@
 
 #include <Eigen/LU>
 
+#include "cost_model/cost_model.hpp"
 #include "detail/parallel.hpp"
 #include "search/frame.hpp"
 #include "search/options.hpp"
@@ -23,7 +24,6 @@
 #include "search/output_order.hpp"
 #include "search/policy.hpp"
 #include "search/search_state.hpp"
-#include "tricell/cost_model.hpp"
 #include "tricell/error.hpp"
 
 namespace tricell {
