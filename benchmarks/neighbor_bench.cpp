@@ -1,6 +1,6 @@
 // Neighbour-list build + search throughput (Google Benchmark). Not a test: timings live here.
 //
-// Workloads (issue 3): diamond Si supercells (a = 5.43 A, cutoff 5 A, 64 to 32768 atoms) and a
+// Workloads: diamond Si supercells (a = 5.43 A, cutoff 5 A, 64 to 32768 atoms) and a
 // random triclinic box at 0.1 atoms/A^3 (cutoff 6 A, 1e3 to 1e5 atoms); full and half lists,
 // sorted and linked cell lists, stored (i, j, S, d) and the visitor that stores nothing.
 // Each reports pairs per second ("pairs/s") over the whole call: grid, cell list and search.

@@ -31,7 +31,7 @@ namespace {
 using tricell::NeighborList;
 using tricell::cli::Output;
 
-// ---- the writers before issue 15 (baseline) -----------------------------------------------
+// ---- an snprintf writer (baseline) ---------------------------------------------------------
 
 std::string legacy_exact(double value) {
     char text[32];

@@ -1,4 +1,4 @@
-// Verlet-list benchmark (issue 6): steps per second of the md_lj example with a Verlet list at
+// Verlet-list benchmark: steps per second of the md_lj example with a Verlet list at
 // several skins, against a fresh neighbour list every step, and the skin the cost model picks.
 //
 // Workload: 2048 Lennard-Jones atoms (FCC at rho = 0.8, started at T = 1, in a tilted box),

@@ -1,5 +1,5 @@
 !> The Fortran 2008 module of tricell: neighbour lists through the C API (tricell.h) over
-!> iso_c_binding, with the same semantics (CONTRACT.md section 4).
+!> iso_c_binding, with the same semantics (docs/contract.md, bindings).
 !>
 !> Layout: positions are positions(3, N) (column k is atom k-1); the box is box(3, 3) with the
 !> lattice vectors a, b, c as its COLUMNS; periodic(3) says which axes are periodic. Both arrays

@@ -1,6 +1,6 @@
 /* tricell.h: the C API of tricell (C99; also valid C++). Link tricell::c (libtricell_c).
  *
- * Conventions (every function follows them; CONTRACT.md sections 2 and 4):
+ * Conventions (every function follows them; docs/contract.md):
  *   - Positions: N x 3 doubles, row-major (x0 y0 z0 x1 y1 z1 ...), Cartesian, in the caller's
  *     length unit. They may lie anywhere, even many box lengths outside the box.
  *   - Box: three lattice vectors a, b, c. tricell_box_from_rows() takes them as the rows of a

@@ -1,5 +1,6 @@
 #include "tricell/stencil.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -125,18 +126,58 @@ std::vector<CellOffset> kept_offsets(const CellGrid& grid, const Box& box, doubl
 
 } // namespace
 
-Stencil Stencil::full(const CellGrid& grid, const Box& box, double search_radius, bool exact) {
+Stencil Stencil::make(const CellGrid& grid, const Box& box, double search_radius, bool half,
+                      bool exact, bool tables) {
     Stencil s;
-    s.offsets_ = kept_offsets(grid, box, search_radius, false, exact);
-    s.half_ = false;
+    s.offsets_ = kept_offsets(grid, box, search_radius, half, exact);
+    s.half_ = half;
+    s.reach_ = grid.reach();
+    // Rows through a table indexed by (da, db), so that wide stencils (cutoffs of many boxes)
+    // stay linear.
+    const int ma = s.reach_[0], mb = s.reach_[1];
+    const std::size_t width = std::size_t(2 * mb + 1);
+    std::vector<int> row_of(std::size_t(2 * ma + 1) * width, -1);
+    for (const CellOffset& d : s.offsets_) {
+        int& row = row_of[std::size_t(d[0] + ma) * width + std::size_t(d[1] + mb)];
+        if (row < 0) {
+            row = int(s.rows_.size());
+            s.rows_.push_back(StencilRow{d[0], d[1], d[2], d[2]});
+        } else {
+            StencilRow& r = s.rows_[std::size_t(row)];
+            r.dc_lo = std::min(r.dc_lo, d[2]);
+            r.dc_hi = std::max(r.dc_hi, d[2]);
+        }
+    }
+    if (!tables) {
+        return s;
+    }
+    for (int k = 0; k < 3; ++k) {
+        const int count = grid.dims()[std::size_t(k)];
+        const int reach = s.reach_[std::size_t(k)];
+        s.neighbour_cell_[k].resize(std::size_t(count + 2 * reach));
+        s.neighbour_shift_[k].resize(std::size_t(count + 2 * reach));
+        for (int t = -reach; t < count + reach; ++t) {
+            const std::size_t slot = std::size_t(t + reach);
+            if (box.periodic(k)) {
+                s.neighbour_cell_[k][slot] = floor_mod(t, count);
+                s.neighbour_shift_[k][slot] = floor_div(t, count);
+            } else {
+                s.neighbour_cell_[k][slot] = (t >= 0 && t < count) ? t : -1;
+                s.neighbour_shift_[k][slot] = 0;
+            }
+        }
+    }
     return s;
 }
 
-Stencil Stencil::half(const CellGrid& grid, const Box& box, double search_radius, bool exact) {
-    Stencil s;
-    s.offsets_ = kept_offsets(grid, box, search_radius, true, exact);
-    s.half_ = true;
-    return s;
+Stencil Stencil::full(const CellGrid& grid, const Box& box, double search_radius, bool exact,
+                      bool tables) {
+    return make(grid, box, search_radius, false, exact, tables);
+}
+
+Stencil Stencil::half(const CellGrid& grid, const Box& box, double search_radius, bool exact,
+                      bool tables) {
+    return make(grid, box, search_radius, true, exact, tables);
 }
 
 } // namespace tricell

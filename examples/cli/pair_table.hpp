@@ -1,4 +1,4 @@
-// The neighbour list as text (tricell neighbors, CONTRACT §3): TSV with a '# i j Sa Sb Sc d Dx
+// The neighbour list as text (tricell neighbors, docs/contract.md): TSV with a '# i j Sa Sb Sc d Dx
 // Dy Dz' header line, CSV with an 'i,j,Sa,Sb,Sc,d,Dx,Dy,Dz' header, or one JSON object with an
 // array per column; the k nearest neighbours of every atom likewise, with the columns
 // i j Sa Sb Sc d. Reals are the shortest text that reads back exactly (text.hpp).

@@ -1,4 +1,4 @@
-// Neighbour lists in a periodic triclinic box (CONTRACT.md section 2): the front door.
+// Neighbour lists in a periodic triclinic box (docs/contract.md): the front door.
 //
 // NeighborSearch::build() does, once for every backend, everything a search shares: it
 // validates the options and positions, picks the search frame (the caller's box, or its reduced
@@ -6,11 +6,10 @@
 // remembering the integer image it came from, checks the expected pair count against max_pairs
 // before anything large is allocated, and hands the wrapped fractional positions to a backend.
 // A backend (lib/backends/: dense sorted grid, linked head/next grid, compact hash, octree,
-// direct image enumeration) only
-// bins the atoms and enumerates candidate (atom range, atom range, image shift) triples; the
-// shared distance test, pair storage, half-list orientation, variable cutoffs, threads and their
-// ordered output, sorting and the map of shifts back to the caller's lattice vectors live once, in
-// lib/. The image shift reported for a pair is relative to the caller's own positions,
+// direct image enumeration) only bins the atoms and enumerates candidate (atom range, atom
+// range, image shift) triples; the shared distance test, pair storage, half-list orientation,
+// variable cutoffs, threads and their ordered output, sorting and the map of shifts back to the
+// caller's lattice vectors live once, in lib/search/. The image shift reported for a pair is relative to the caller's own positions,
 // S = (cell shift) + (image of i) - (image of j), so D = x_j - x_i + H S holds for the positions
 // as given, even far outside the box.
 //
@@ -45,7 +44,7 @@
 namespace tricell {
 
 /// How atoms are binned and candidate pairs enumerated. Never changes the result, only the
-/// speed and memory (CONTRACT.md section 2).
+/// speed and memory (docs/contract.md).
 enum class SearchBackend {
     automatic, ///< chosen per call by the search policy from the cost model
     dense,     ///< a dense cell grid (at most max_cells cells), atoms sorted by cell

@@ -12,6 +12,12 @@
 // box-constrained quadratic problem, solved exactly), is not below the search radius. The
 // pruning is symmetric in delta and -delta, so the half stencil stays exact.
 //
+// The stencil also owns what backends need to walk it: its rows (for each (da, db), the range of
+// dc it keeps: in a layout where c varies fastest the cells of one row are consecutive, so a row
+// is scanned as a few contiguous atom ranges instead of one range per offset) and, on request,
+// per-axis tables turning a cell coordinate plus an offset into the neighbour cell and its image
+// shift.
+//
 // The full stencil holds every kept offset. The half stencil holds the zero offset (pairs inside
 // one cell, each unordered pair once) and the lexicographically positive offsets: for any pair
 // of atoms and image shift, exactly one of (i, j, S) and (j, i, -S) is found through it.
@@ -29,6 +35,11 @@ namespace tricell {
 
 using CellOffset = std::array<int, 3>;
 
+/// A row of the stencil: offsets (da, db, dc) for dc in [dc_lo, dc_hi].
+struct StencilRow {
+    int da, db, dc_lo, dc_hi;
+};
+
 class TRICELL_API Stencil {
   public:
     Stencil() = default;
@@ -36,18 +47,36 @@ class TRICELL_API Stencil {
     /// `exact = false` only the cheap tests run (the gap across one pair of faces, the distance
     /// of the cell centres) and offsets they cannot decide are kept: a superset, for grids so
     /// sparse that solving the closest-approach problem costs more than scanning the cells.
+    /// With `tables` the per-axis neighbour tables are built too (O(cells per axis) memory).
     static Stencil full(const CellGrid& grid, const Box& box, double search_radius,
-                        bool exact = true);
+                        bool exact = true, bool tables = false);
     /// The zero offset first, then the lexicographically positive half of full().
     static Stencil half(const CellGrid& grid, const Box& box, double search_radius,
-                        bool exact = true);
+                        bool exact = true, bool tables = false);
 
     const std::vector<CellOffset>& offsets() const { return offsets_; }
     std::size_t size() const { return offsets_.size(); }
     bool is_half() const { return half_; }
+    /// The rows, for each (da, db) the hull of its dc (a superset of the kept offsets is always
+    /// correct; in practice the kept dc already form an interval).
+    const std::vector<StencilRow>& rows() const { return rows_; }
+    /// With tables: the neighbour cell along `axis` of coordinate t = c + delta in
+    /// [-reach, n + reach), -1 beyond the end of an open axis, and its image shift.
+    int neighbour_cell(int axis, int t) const {
+        return neighbour_cell_[axis][std::size_t(t + reach_[std::size_t(axis)])];
+    }
+    int neighbour_shift(int axis, int t) const {
+        return neighbour_shift_[axis][std::size_t(t + reach_[std::size_t(axis)])];
+    }
 
   private:
+    static Stencil make(const CellGrid& grid, const Box& box, double search_radius, bool half,
+                        bool exact, bool tables);
     std::vector<CellOffset> offsets_;
+    std::vector<StencilRow> rows_;
+    std::array<int, 3> reach_{};
+    std::vector<int> neighbour_cell_[3];
+    std::vector<int> neighbour_shift_[3];
     bool half_ = false;
 };
 

@@ -35,9 +35,7 @@ void expect_oracle(Case c) {
         expected = tricell::testing::canonical_half(expected);
     }
     c.options.quantities.vectors = true;
-    for (SearchBackend backend :
-         {SearchBackend::automatic, SearchBackend::dense, SearchBackend::linked,
-          SearchBackend::hash, SearchBackend::octree, SearchBackend::direct}) {
+    for (const SearchBackend backend : tricell::search_backends()) {
         SCOPED_TRACE(tricell::backend_name(backend));
         c.options.backend = backend;
         const tricell::NeighborList list = tricell::compute_neighbors(box, c.x, c.options);

@@ -124,6 +124,20 @@ struct BackendNames {
 };
 TYPED_TEST_SUITE(NeighborProperty, Backends, BackendNames);
 
+// The typed suite's list is the registry's: a backend added to the table and not here fails.
+template <class List> struct BackendsOf;
+template <class... Ts> struct BackendsOf<::testing::Types<Ts...>> {
+    static std::vector<SearchBackend> get() { return {Ts::value...}; }
+};
+
+TEST(NeighborPropertySuite, CoversEveryBackendOfTheRegistry) {
+    std::vector<SearchBackend> typed = BackendsOf<Backends>::get();
+    std::vector<SearchBackend> registry = tricell::search_backends();
+    std::sort(typed.begin(), typed.end());
+    std::sort(registry.begin(), registry.end());
+    EXPECT_EQ(typed, registry);
+}
+
 TYPED_TEST(NeighborProperty, FullListEqualsBruteForce_RandomCases) {
     for (std::uint64_t seed = 0; seed < case_count; ++seed) {
         const RandomSystem sys = tricell::testing::random_system(seed);

@@ -159,9 +159,7 @@ TEST(NearestNeighbors, SameResultWithEveryBackendAndThreads) {
         }
         const std::size_t k = sys.pbc.any() ? 7 : 5;
         const NearestNeighbors reference = nearest_neighbors(sys.box(), sys.positions, k);
-        for (const auto backend : {tricell::SearchBackend::dense, tricell::SearchBackend::linked,
-                                   tricell::SearchBackend::hash, tricell::SearchBackend::octree,
-                                   tricell::SearchBackend::direct}) {
+        for (const auto backend : tricell::search_backends()) {
             for (const int threads : {1, 2}) {
                 const NearestNeighbors got =
                     nearest_neighbors(sys.box(), sys.positions, k, {threads, backend});

@@ -213,11 +213,10 @@ TEST(NeighborList, RejectsBadVariableCutoffsNamingThem) {
     EXPECT_THROW_MSG(
         tricell::parse_backend("fast"), tricell::InvalidArgument,
         "unknown search backend 'fast' (expected auto, dense, linked, hash, octree or direct)");
-    for (const SearchBackend b :
-         {SearchBackend::automatic, SearchBackend::dense, SearchBackend::linked,
-          SearchBackend::hash, SearchBackend::octree, SearchBackend::direct}) {
+    for (const SearchBackend b : tricell::search_backends()) {
         EXPECT_EQ(tricell::parse_backend(tricell::backend_name(b)), b);
     }
+    EXPECT_EQ(tricell::backend_choices(), "auto, dense, linked, hash, octree or direct");
 }
 
 TEST(NeighborList, ZeroRadiiOrAbsentSpeciesGiveNoPairs) {

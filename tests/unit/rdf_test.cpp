@@ -178,9 +178,7 @@ TEST(Rdf, SameResultWithEveryBackendAndThreads) {
         options.bins = 17;
         Rdf reference(options);
         reference.add_frame(frame.box, frame.x, frame.species);
-        for (const auto backend : {tricell::SearchBackend::dense, tricell::SearchBackend::linked,
-                                   tricell::SearchBackend::hash, tricell::SearchBackend::octree,
-                                   tricell::SearchBackend::direct}) {
+        for (const auto backend : tricell::search_backends()) {
             for (const int threads : {1, 3}) {
                 RdfOptions other = options;
                 other.backend = backend;

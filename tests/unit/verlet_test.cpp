@@ -1,4 +1,4 @@
-// Tests of tricell::VerletList (issue 6): at every step of random trajectories the refreshed
+// Tests of tricell::VerletList: at every step of random trajectories the refreshed
 // list equals the brute-force list, whether the caller wraps positions or not, while the box
 // deforms, and when atoms jump; the rebuild rule and box budget at their thresholds; the cost
 // model; and the md_lj example's forces against brute-force forces.
@@ -16,8 +16,8 @@
 #include "support/brute_force.hpp"
 #include "support/expect_throw_msg.hpp"
 #include "support/random_boxes.hpp"
-#include "tricell/tuning.hpp"
 #include "tricell/error.hpp"
+#include "tricell/tuning.hpp"
 #include "tricell/verlet.hpp"
 
 using tricell::Box;
@@ -555,10 +555,7 @@ TEST(VerletList, HugeCoordinateOnAnOpenAxis_RefusedByEveryBackend) {
     const std::vector<Eigen::Vector3d> x = {{7.4999063294325072, 3.2026348788673333, -6.21},
                                             {10, 1e-300, 1e300},
                                             {-1.9074678308869324, -0.28953989117890067, 5.85}};
-    for (const tricell::SearchBackend backend :
-         {tricell::SearchBackend::automatic, tricell::SearchBackend::dense,
-          tricell::SearchBackend::linked, tricell::SearchBackend::hash,
-          tricell::SearchBackend::octree, tricell::SearchBackend::direct}) {
+    for (const tricell::SearchBackend backend : tricell::search_backends()) {
         SCOPED_TRACE(tricell::backend_name(backend));
         VerletOptions o = verlet_options(6.0225681678921568, 0.7753593772789843);
         o.neighbors.backend = backend;

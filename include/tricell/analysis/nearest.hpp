@@ -30,7 +30,7 @@ namespace tricell {
 struct NearestNeighbors {
     std::size_t k = 0;
     std::vector<std::uint32_t> j;
-    /// 3 ints per entry: S relative to the positions as given (CONTRACT.md section 2), so
+    /// 3 ints per entry: S relative to the positions as given (docs/contract.md), so
     /// D = x_j - x_i + H S.
     std::vector<std::int32_t> shifts;
     std::vector<double> distances;

@@ -1,7 +1,7 @@
 // Crystal structures read from files: CIF, VASP POSCAR/CONTCAR and (extended) XYZ.
 //
 // Every reader returns a Structure: a Box, and per atom its element symbol, Cartesian position,
-// occupancy and label. The format is chosen from the file name (CONTRACT.md section 3) unless
+// occupancy and label. The format is chosen from the file name (docs/contract.md, command line) unless
 // ReadOptions::format says otherwise. How each format is read:
 //
 // - CIF: the first data block with _atom_site_fract_x. Cell from _cell_length_* and

@@ -5,7 +5,7 @@
 // its owned and ghost atoms in their continuous local frame, in the box's frame with every axis
 // open (the ghosts already are the periodic images). That local search is a half list; each
 // local pair a -> b (and b -> a) maps to the global pair (id(a), id(b), S = c_a - c_b), see
-// halo.hpp, and is kept by the rule below. Over all ranks (CONTRACT.md, MPI):
+// halo.hpp, and is kept by the rule below. Over all ranks (docs/contract.md, MPI):
 //
 // - full list: every (i, j, S) of the serial full list with i owned by this rank, once;
 // - half list (ownership rule): the pair is reported in the serial list's canonical orientation
