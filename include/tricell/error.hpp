@@ -29,6 +29,29 @@ class TRICELL_API InvalidArgument : public Error {
     using Error::Error;
 };
 
+/// A neighbour list larger than its pair limit (NeighborOptions::max_pairs, or a front end's own
+/// limit), refused before anything large is allocated (from the estimate) or as soon as the
+/// stored pairs pass it. It carries its fields so that every front end can name the limit in its
+/// own terms (the command line's --max-pairs, the C struct's field, Python's keyword): what()
+/// names NeighborOptions::max_pairs, message_for() any other name.
+class TRICELL_API PairLimitError : public InvalidArgument {
+  public:
+    /// `subject` says what is too large, e.g. "cutoff 3 would give about 1.2e9 pairs for 1000
+    /// atoms (estimated from the density)"; `pairs` is that estimate, or the count reached.
+    PairLimitError(std::string subject, double pairs, std::size_t limit);
+    const std::string& subject() const noexcept { return subject_; }
+    double pairs() const noexcept { return pairs_; }
+    std::size_t limit() const noexcept { return limit_; }
+    /// "SUBJECT, more than LIMIT_TEXT; raise RAISE to allow it", e.g. message_for("--max-pairs
+    /// 100", "--max-pairs").
+    std::string message_for(const std::string& limit_text, const std::string& raise) const;
+
+  private:
+    std::string subject_;
+    double pairs_;
+    std::size_t limit_;
+};
+
 /// A box or configuration that cannot be handled (singular box, zero periodic vector, ...).
 class TRICELL_API GeometryError : public Error {
   public:

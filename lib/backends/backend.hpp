@@ -1,12 +1,12 @@
-// The seam between the shared search (lib/neighbor_list.cpp) and the structures that find
+// The seam between the shared search (lib/search/) and the structures that find
 // candidate pairs. A backend does two things only: it bins the atoms (choosing the order in
 // which they are stored, so that its candidates are contiguous ranges) and it enumerates the
 // candidate (range, range, image shift) triples of a range of its work units (cells, buckets,
 // leaves) into a CandidateScanner. It never sees the caller's frame, the output layout, the
 // cutoff rule or threads; the shared part never knows how cells are stored.
 //
-// Adding a backend: a file here, a case in make_backend(), the choice in cost_model.cpp
-// (choose_backend) and the backend list of the typed property suite.
+// Adding a backend: a file here and one line of the table in lib/search/registry.cpp; the
+// automatic choice (lib/search/policy.cpp) picks it only once the cost model knows its cost.
 #pragma once
 
 #include <cstddef>
@@ -16,7 +16,7 @@
 
 #include <Eigen/Core>
 
-#include "detail/candidate_scan.hpp"
+#include "search/candidate_scan.hpp"
 #include "tricell/box.hpp"
 #include "tricell/error.hpp"
 #include "tricell/neighbor_list.hpp"
@@ -38,8 +38,9 @@ struct BinningInput {
     const std::vector<Eigen::Vector3d>& fractional; ///< in [0, 1) along periodic axes
     Eigen::Vector3d lower, upper;                   ///< extent of the positions, per axis
     double search_radius;                           ///< largest cutoff plus a rounding margin
-    const NeighborOptions& options;                 ///< tuning knobs (half, max_cells, ...)
+    const NeighborOptions& options;                 ///< tuning knobs (half, leaf_size, ...)
     std::size_t threads = 1;                        ///< threads the binning may use
+    std::size_t max_cells = 0;                      ///< cap of the dense and linked grids
 };
 
 class Backend {
@@ -58,8 +59,6 @@ class Backend {
     /// Fills the backend-specific fields of info (backend, cells, stored_cells).
     virtual void describe(SearchInfo& info) const = 0;
 };
-
-std::unique_ptr<Backend> make_backend(SearchBackend kind);
 
 /// The periodic images a backend enumerates along `axis` (perpendicular width `width`) for
 /// `search_radius`, `images` (from its own bound), as an int. Refused past a million, as the

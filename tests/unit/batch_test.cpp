@@ -282,7 +282,7 @@ TEST(Batch, MaxPairsBoundsTheWholeBatch) {
         options.max_pairs = total - 1;
         EXPECT_THROW_MSG(tricell::compute_neighbors_batch(structures, options, batch),
                          tricell::InvalidArgument,
-                         "the batch has more than max_pairs = 59 pairs in total");
+                         "the batch has too many pairs in total, more than max_pairs = 59");
         EXPECT_EQ(batch.size(), 0u);
     }
 }

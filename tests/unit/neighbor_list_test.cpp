@@ -252,7 +252,7 @@ TEST(NeighborList, RejectsPositionTooFarToWrap) {
 }
 
 TEST(NeighborList, BatchedOutputEqualsBruteForceForAnyThreadCount) {
-    // The batched in-place output of 2 to 4 threads (lib/detail/ordered_output.hpp) against one
+    // The batched in-place output of 2 to 4 threads (lib/search/ordered_output.hpp) against one
     // thread storing directly and against brute force: a list of about 294000 pairs, and
     // clustered atoms whose list is several times the per-cell estimate, so the final columns
     // must grow while batches are copied in.
@@ -356,7 +356,7 @@ TEST(NeighborList, ErrorLeavesOutputEmptyNotHalfWritten) {
     tricell::compute_neighbors(cube10, pair, with_cutoff(0.5), list);
     ASSERT_EQ(list.size(), 2u);
     EXPECT_THROW_MSG(tricell::compute_neighbors(cube10, x, o, list), tricell::InvalidArgument,
-                     "the neighbour list has more than max_pairs = 100 pairs");
+                     "the neighbour list has too many pairs, more than max_pairs = 100");
     EXPECT_TRUE(list.empty());
     EXPECT_TRUE(list.distances().empty());
     // The same with threads: each chunk stays below the limit, the total does not.
