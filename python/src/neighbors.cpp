@@ -246,7 +246,7 @@ class PyVerletList {
 
 void bind_neighbors(py::module_& m) {
     py::class_<PyNeighborList>(m, "NeighborList", R"doc(
-Periodic neighbour list in a triclinic box (CONTRACT.md section 2).
+Periodic neighbour list in a triclinic box.
 
 NeighborList(cutoff, full=True, sorted=False, threads=1, backend="auto")
 
