@@ -2,9 +2,10 @@
 # The long fuzzing campaign (tests/fuzz/README.md). Builds the harnesses in build-fuzz/, then runs
 # each one in turn as a single in-process job (no -jobs/-fork: the machine is shared), until it has executed RUNS inputs
 # (default 10^7) or SECONDS have passed. Each starts from its corpus in tests/fuzz/corpus/<name>/
-# and keeps what it finds in build-fuzz/campaign/<name>/ (corpus/, artifacts/, log); the source
-# corpus is only read. At the end one line per harness: executions, exec/s, cov, ft, corpus size
-# and the crash, timeout and OOM artifacts found.
+# and its regression inputs in tests/fuzz/regressions/<name>/, and keeps what it finds in
+# build-fuzz/campaign/<name>/ (corpus/, artifacts/, log); the source tree is only read
+# (scripts/fuzz-minimise.sh folds the finds into the corpus). At the end one line per harness:
+# executions, exec/s, cov, ft, corpus size and the crash, timeout and OOM artifacts found.
 #
 #   scripts/fuzz-campaign.sh [SECONDS_PER_HARNESS [HARNESS...]]
 #   e.g. scripts/fuzz-campaign.sh 600 poscar xyz        (default: 3600 s; all harnesses)
@@ -25,6 +26,10 @@ for name in "${harnesses[@]}"; do
     # Absolute paths: cli_fuzzer works in a scratch directory of its own.
     dir="$PWD/build-fuzz/campaign/$name"
     mkdir -p "$dir/corpus" "$dir/artifacts"
+    seeds=("$PWD/tests/fuzz/corpus/$name")
+    if [ -d "tests/fuzz/regressions/$name" ]; then
+        seeds+=("$PWD/tests/fuzz/regressions/$name")
+    fi
     dict=()
     if [ -f "tests/fuzz/$name.dict" ]; then
         dict=("-dict=$PWD/tests/fuzz/$name.dict")
@@ -33,7 +38,7 @@ for name in "${harnesses[@]}"; do
     status=0
     "build-fuzz/tests/fuzz/${name}_fuzzer" -rss_limit_mb=2048 -timeout=10 -close_fd_mask=3 \
         -runs="$runs" -max_total_time="$seconds" -print_final_stats=1 \
-        "${dict[@]}" -artifact_prefix="$dir/artifacts/" "$dir/corpus" "$PWD/tests/fuzz/corpus/$name" \
+        "${dict[@]}" -artifact_prefix="$dir/artifacts/" "$dir/corpus" "${seeds[@]}" \
         >"$dir/log" 2>&1 || status=$?
     executed=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$dir/log" | tail -1 | grep -o '[0-9]*$' || echo "?")
     speed=$(grep -o 'stat::average_exec_per_sec: *[0-9]*' "$dir/log" | tail -1 | grep -o '[0-9]*$' || echo "?")
