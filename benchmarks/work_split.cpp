@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include <tricell/cost_model.hpp>
+#include "cost_model/cost_model.hpp"
 #include <tricell/neighbor_list.hpp>
 
 namespace {

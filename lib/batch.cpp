@@ -8,19 +8,12 @@
 #include <thread>
 
 #include "detail/parallel.hpp"
+#include "search/policy.hpp"
 #include "tricell/error.hpp"
 
 namespace tricell {
 
 namespace detail {
-
-void BatchColumns::clear() {
-    i.clear();
-    j.clear();
-    shifts.clear();
-    distances.clear();
-    vectors.clear();
-}
 
 // One thread's state: a search object and a scratch list reused from structure to structure
 // (and from call to call), the columns its run of structures is appended to (thread 0 appends
@@ -29,7 +22,7 @@ void BatchColumns::clear() {
 struct BatchWorker {
     NeighborSearch search;
     NeighborList scratch;
-    BatchColumns columns;
+    PairColumns columns;
     std::vector<std::size_t> pairs;
     std::vector<std::size_t> offsets;
 };
@@ -62,16 +55,6 @@ template <class T> void append(PairArray<T>& to, const PairArray<T>& from) {
     to.insert(to.end(), from.begin(), from.end());
 }
 
-// Estimated cost of one structure's search, in units of one stored pair: a fixed cost per call
-// and per atom (binning) measured on small cells, plus the pairs expected from the density.
-double estimated_cost(const BatchStructure& s, const NeighborOptions& options) {
-    constexpr double per_call = 300, per_atom = 3;
-    const double n = double(s.positions.size());
-    const double sphere = 4.0 / 3.0 * 3.14159265358979323846 * std::pow(options.cutoff, 3);
-    const double pairs = std::min(n * n * sphere / std::abs(s.box.volume()), n * n * 1e3);
-    return per_call + per_atom * n + (options.half ? 0.5 : 1.0) * pairs;
-}
-
 // Contiguous runs of structures of about equal estimated cost, at most `threads` of them.
 std::vector<std::size_t> split_by_cost(const BatchStructure* structures, std::size_t count,
                                        const NeighborOptions& options, std::size_t threads) {
@@ -80,7 +63,8 @@ std::vector<std::size_t> split_by_cost(const BatchStructure* structures, std::si
         std::vector<double> cost(count);
         double total = 0;
         for (std::size_t s = 0; s < count; ++s) {
-            cost[s] = estimated_cost(structures[s], options);
+            cost[s] =
+                detail::structure_cost(structures[s].box, structures[s].positions.size(), options);
             total += cost[s];
         }
         double running = 0;
@@ -108,7 +92,6 @@ void BatchList::clear() {
     columns_.clear();
     pair_offsets_.clear();
     atom_offsets_.clear();
-    offsets_.clear();
 }
 
 void compute_neighbors_batch(const BatchStructure* structures, std::size_t count,
@@ -140,7 +123,7 @@ void compute_neighbors_batch(const BatchStructure* structures, std::size_t count
 
     auto run = [&](std::size_t t) {
         detail::BatchWorker& w = workers[t];
-        detail::BatchColumns& columns = t == 0 ? out.columns_ : w.columns;
+        PairColumns& columns = t == 0 ? out.columns_ : w.columns;
         columns.clear();
         w.pairs.clear();
         w.offsets.clear();
@@ -206,7 +189,7 @@ void compute_neighbors_batch(const BatchStructure* structures, std::size_t count
 
         // Join the other runs' columns after run 0's, each run copied by its own thread.
         if (runs > 1) {
-            detail::BatchColumns& c = out.columns_;
+            PairColumns& c = out.columns_;
             c.i.resize(total);
             c.j.resize(total);
             if (q.shifts) {
@@ -219,7 +202,7 @@ void compute_neighbors_batch(const BatchStructure* structures, std::size_t count
                 c.vectors.resize(3 * total);
             }
             run_in_threads(runs - 1, [&](std::size_t k) {
-                const detail::BatchColumns& from = workers[k + 1].columns;
+                const PairColumns& from = workers[k + 1].columns;
                 const std::ptrdiff_t at = std::ptrdiff_t(run_start[k + 1]);
                 std::copy(from.i.begin(), from.i.end(), c.i.begin() + at);
                 std::copy(from.j.begin(), from.j.end(), c.j.begin() + at);
@@ -231,18 +214,19 @@ void compute_neighbors_batch(const BatchStructure* structures, std::size_t count
 
         if (options.sorted) {
             // Per-atom offsets, shifted from each structure's first pair to the shared columns.
-            out.offsets_.reserve(out.atom_offsets_[count] + 1);
+            out.columns_.offsets.reserve(out.atom_offsets_[count] + 1);
             for (std::size_t t = 0; t < runs; ++t) {
                 std::size_t atom = 0;
                 for (std::size_t s = bounds[t]; s < bounds[t + 1]; ++s) {
                     const std::size_t atoms = structures[s].positions.size();
                     for (std::size_t a = 0; a < atoms; ++a) {
-                        out.offsets_.push_back(out.pair_offsets_[s] + workers[t].offsets[atom + a]);
+                        out.columns_.offsets.push_back(out.pair_offsets_[s] +
+                                                       workers[t].offsets[atom + a]);
                     }
                     atom += atoms;
                 }
             }
-            out.offsets_.push_back(total);
+            out.columns_.offsets.push_back(total);
         }
         for (detail::BatchWorker& w : workers) {
             w.columns.clear();

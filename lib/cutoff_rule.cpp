@@ -2,7 +2,7 @@
 #include <cmath>
 #include <map>
 
-#include "detail/candidate_scan.hpp"
+#include "search/candidate_scan.hpp"
 #include "tricell/error.hpp"
 
 namespace tricell::detail {

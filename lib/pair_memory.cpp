@@ -4,9 +4,6 @@
 // array of at least huge_page bytes is aligned to and rounded up to whole huge pages and advised
 // to the kernel as huge-page memory (Linux transparent huge pages in "madvise" mode, Debian's
 // default, gives huge pages only to memory advised so). Smaller arrays come from operator new.
-// Measured on this kind of machine in "madvise" mode (interleaved runs, medians, loaded
-// machine), one thread, full list: diamond Si 16x16x16 (24 MB) 21.4 -> 18.9 ms, random
-// triclinic 1e5 atoms (242 MB) 168 -> 157 ms; in "always" mode both builds ran alike.
 #include <cstdlib>
 #include <new>
 

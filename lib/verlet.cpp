@@ -1,6 +1,5 @@
 #include "tricell/verlet.hpp"
 
-#include "detail/list_writer.hpp"
 #include "tricell/detail/distance_kernel.hpp"
 
 #include <algorithm>
@@ -384,23 +383,22 @@ void VerletList::refresh(const Box& box) {
     const Quantities& q = options_.neighbors.quantities;
     const std::size_t n = atom_count_;
     const std::size_t capacity = candidate_j_.size();
-    detail::ListWriter::i(pairs_).resize(capacity);
-    detail::ListWriter::j(pairs_).resize(capacity);
-    detail::ListWriter::shifts(pairs_).resize(q.shifts ? 3 * capacity : 0);
-    detail::ListWriter::distances(pairs_).resize(q.distances ? capacity : 0);
-    detail::ListWriter::vectors(pairs_).resize(q.vectors ? 3 * capacity : 0);
-    detail::ListWriter::offsets(pairs_).resize(n + 1);
-    const RefreshColumns out{
-        detail::ListWriter::i(pairs_).data(), detail::ListWriter::j(pairs_).data(),
-        detail::ListWriter::shifts(pairs_).data(), detail::ListWriter::distances(pairs_).data(),
-        detail::ListWriter::vectors(pairs_).data()};
+    PairColumns& columns = pairs_.columns();
+    columns.i.resize(capacity);
+    columns.j.resize(capacity);
+    columns.shifts.resize(q.shifts ? 3 * capacity : 0);
+    columns.distances.resize(q.distances ? capacity : 0);
+    columns.vectors.resize(q.vectors ? 3 * capacity : 0);
+    columns.offsets.resize(n + 1);
+    const RefreshColumns out{columns.i.data(), columns.j.data(), columns.shifts.data(),
+                             columns.distances.data(), columns.vectors.data()};
     const double cutoff_sq = detail::strict_threshold_sq(options_.neighbors.cutoff);
     auto run = [&](auto shifts, auto distances, auto vectors) {
         return filter_candidates<decltype(shifts)::value, decltype(distances)::value,
                                  decltype(vectors)::value>(
             n, candidate_offsets_.data(), candidate_j_.data(), candidate_shift_.data(),
             unwrapped_.data(), shift_vectors_.data(), shift_table_.data(), jumps_.data(), cutoff_sq,
-            detail::ListWriter::offsets(pairs_).data(), out);
+            columns.offsets.data(), out);
     };
     using Yes = std::true_type;
     using No = std::false_type;
@@ -432,11 +430,11 @@ void VerletList::refresh(const Box& box) {
         count = run(Yes{}, Yes{}, Yes{});
         break;
     }
-    detail::ListWriter::i(pairs_).resize(count);
-    detail::ListWriter::j(pairs_).resize(count);
-    detail::ListWriter::shifts(pairs_).resize(q.shifts ? 3 * count : 0);
-    detail::ListWriter::distances(pairs_).resize(q.distances ? count : 0);
-    detail::ListWriter::vectors(pairs_).resize(q.vectors ? 3 * count : 0);
+    columns.i.resize(count);
+    columns.j.resize(count);
+    columns.shifts.resize(q.shifts ? 3 * count : 0);
+    columns.distances.resize(q.distances ? count : 0);
+    columns.vectors.resize(q.vectors ? 3 * count : 0);
 }
 
 } // namespace tricell

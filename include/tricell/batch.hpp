@@ -38,14 +38,6 @@ struct BatchStructure {
 };
 
 namespace detail {
-/// The pair columns of a batch (or of one thread's share of it).
-struct BatchColumns {
-    PairArray<std::uint32_t> i, j;
-    PairArray<std::int32_t> shifts;
-    PairArray<double> distances, vectors;
-    std::size_t size() const { return i.size(); }
-    void clear();
-};
 struct BatchWorker; // one thread's search object and scratch list (lib/batch.cpp)
 /// Rethrows the tricell::Error in flight with "structure s: " before its message, keeping its
 /// type (for the batch's front doors, which check their own per-structure arguments).
@@ -76,6 +68,8 @@ class TRICELL_API BatchList {
     }
     /// Pairs over all structures.
     std::size_t size() const { return columns_.size(); }
+    /// The shared columns (see the accessors below).
+    const PairColumns& columns() const { return columns_; }
     /// Pairs of structure s are [pair_offsets()[s], pair_offsets()[s + 1]); size count + 1.
     const std::vector<std::size_t>& pair_offsets() const { return pair_offsets_; }
     /// Atoms of structure s are [atom_offsets()[s], atom_offsets()[s + 1]) in a numbering of
@@ -93,7 +87,7 @@ class TRICELL_API BatchList {
     const PairArray<double>& vectors() const { return columns_.vectors; }
     /// With sorted output: the pairs of atom a of structure s are [offsets[k], offsets[k + 1])
     /// with k = atom_offsets()[s] + a (indices into the shared columns). Empty otherwise.
-    const std::vector<std::size_t>& offsets() const { return offsets_; }
+    const std::vector<std::size_t>& offsets() const { return columns_.offsets; }
 
     /// Empties the list, keeping the capacity.
     void clear();
@@ -101,8 +95,8 @@ class TRICELL_API BatchList {
   private:
     friend void compute_neighbors_batch(const BatchStructure*, std::size_t, const NeighborOptions&,
                                         BatchList&);
-    detail::BatchColumns columns_;
-    std::vector<std::size_t> pair_offsets_, atom_offsets_, offsets_;
+    PairColumns columns_;
+    std::vector<std::size_t> pair_offsets_, atom_offsets_;
     // One per thread of the last call, kept so that their buffers are reused.
     std::vector<detail::BatchWorker> workers_;
 };

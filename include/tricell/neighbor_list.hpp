@@ -39,6 +39,7 @@
 
 #include "tricell/box.hpp"
 #include "tricell/export.hpp"
+#include "tricell/pair_columns.hpp"
 #include "tricell/types.hpp"
 
 namespace tricell {
@@ -46,7 +47,7 @@ namespace tricell {
 /// How atoms are binned and candidate pairs enumerated. Never changes the result, only the
 /// speed and memory (CONTRACT.md section 2).
 enum class SearchBackend {
-    automatic, ///< chosen per call from the cost model (include/tricell/cost_model.hpp)
+    automatic, ///< chosen per call by the search policy from the cost model
     dense,     ///< a dense cell grid (at most max_cells cells), atoms sorted by cell
     linked,    ///< the same grid as head/next chains (no reordering of the atoms)
     hash,      ///< compact hashing: only non-empty cells stored, full resolution, O(N) memory
@@ -62,13 +63,6 @@ TRICELL_API const char* backend_name(SearchBackend backend);
 TRICELL_API SearchBackend parse_backend(const std::string& name);
 /// The names of search_backends() for messages and help texts: "auto, dense, ... or direct".
 TRICELL_API std::string backend_choices();
-
-/// Which per-pair quantities compute() stores besides i and j.
-struct Quantities {
-    bool shifts = true;    ///< S, three ints per pair
-    bool distances = true; ///< d = |D|
-    bool vectors = false;  ///< D, three doubles per pair
-};
 
 /// One entry of a per-species-pair cutoff table (symmetric: (a, b) also covers (b, a)).
 struct SpeciesCutoff {
@@ -116,9 +110,8 @@ struct TRICELL_API NeighborOptions {
     /// list is identical, pair for pair and in the same order, whatever the number of threads.
     /// (for_each_pair() always runs on the calling thread.) Threads asked for explicitly are
     /// always used; each build() and compute() (one for both in compute_neighbors()) starts its
-    /// helper threads once, which costs 20-70 us on a loaded machine: a search of a few thousand
-    /// atoms or more gains (diamond Si, 4096 atoms, rc 5: about 1.3-1.5x with two threads), a
-    /// smaller one is slower than on one thread (64 atoms: about 3x). Automatic threads (0) stay
+    /// helper threads once, which a search of a few thousand atoms or more outweighs and a
+    /// smaller one does not (benchmarks/README.md has the figures). Automatic threads (0) stay
     /// at one for small searches.
     int threads = 1;
 
@@ -139,75 +132,38 @@ struct Pair {
     double distance() const { return std::sqrt(distance_sq); }
 };
 
-namespace detail {
-/// Memory for a pair array (pair_memory.cpp): a large one is asked for in huge pages.
-TRICELL_API void* allocate_pair_memory(std::size_t bytes);
-/// Frees what allocate_pair_memory(bytes) returned, with the same `bytes`.
-TRICELL_API void free_pair_memory(void* memory, std::size_t bytes) noexcept;
-
-/// An allocator that leaves new elements of trivial types uninitialised, so that growing a pair
-/// array does not first write zeros over memory that is about to be overwritten, and that puts
-/// large arrays in huge pages.
-template <class T> struct UninitializedAllocator : std::allocator<T> {
-    template <class U> struct rebind { using other = UninitializedAllocator<U>; };
-    UninitializedAllocator() = default;
-    template <class U>
-    UninitializedAllocator(const UninitializedAllocator<U>&) noexcept {} // NOLINT
-    T* allocate(std::size_t n) {
-        if (n > std::size_t(-1) / sizeof(T)) {
-            throw std::bad_array_new_length();
-        }
-        return static_cast<T*>(allocate_pair_memory(n * sizeof(T)));
-    }
-    void deallocate(T* p, std::size_t n) noexcept { free_pair_memory(p, n * sizeof(T)); }
-    template <class U> void construct(U* p) noexcept { ::new (static_cast<void*>(p)) U; }
-    template <class U, class... Args> void construct(U* p, Args&&... args) {
-        ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
-    }
-};
-struct SearchState;
-struct ListWriter;
-} // namespace detail
-
-/// The array type of a NeighborList's columns: a std::vector whose growth skips zero-filling.
-template <class T> using PairArray = std::vector<T, detail::UninitializedAllocator<T>>;
-
 /// Stored pairs, struct-of-arrays. Reuse one object across calls to keep its buffers.
 class TRICELL_API NeighborList {
   public:
-    std::size_t size() const { return i_.size(); }
-    bool empty() const { return i_.empty(); }
-    const PairArray<std::uint32_t>& i() const { return i_; }
-    const PairArray<std::uint32_t>& j() const { return j_; }
+    std::size_t size() const { return columns_.size(); }
+    bool empty() const { return columns_.empty(); }
+    const PairArray<std::uint32_t>& i() const { return columns_.i; }
+    const PairArray<std::uint32_t>& j() const { return columns_.j; }
     /// 3 ints per pair (Sa, Sb, Sc), empty unless Quantities::shifts.
-    const PairArray<std::int32_t>& shifts() const { return shifts_; }
+    const PairArray<std::int32_t>& shifts() const { return columns_.shifts; }
     /// Empty unless Quantities::distances.
-    const PairArray<double>& distances() const { return distances_; }
+    const PairArray<double>& distances() const { return columns_.distances; }
     /// 3 doubles per pair (Dx, Dy, Dz), empty unless Quantities::vectors.
-    const PairArray<double>& vectors() const { return vectors_; }
+    const PairArray<double>& vectors() const { return columns_.vectors; }
     /// With sorted output: pairs of atom i are [offsets[i], offsets[i + 1]). Empty otherwise.
-    const std::vector<std::size_t>& offsets() const { return offsets_; }
+    const std::vector<std::size_t>& offsets() const { return columns_.offsets; }
 
-    Shift shift(std::size_t k) const {
-        return Shift(shifts_[3 * k], shifts_[3 * k + 1], shifts_[3 * k + 2]);
-    }
-    Eigen::Vector3d vector(std::size_t k) const {
-        return Eigen::Vector3d(vectors_[3 * k], vectors_[3 * k + 1], vectors_[3 * k + 2]);
-    }
+    Shift shift(std::size_t k) const { return columns_.shift(k); }
+    Eigen::Vector3d vector(std::size_t k) const { return columns_.vector(k); }
     /// Empties the list, keeping the capacity.
-    void clear();
+    void clear() { columns_.clear(); }
+
+    /// The columns themselves, for code that fills or reorders a list (the search, the Verlet
+    /// list and the analysis write through this).
+    const PairColumns& columns() const { return columns_; }
+    PairColumns& columns() { return columns_; }
+    /// Per-thread batch columns that a threaded compute() keeps here between calls, so that
+    /// their memory is reused instead of being faulted in again. Not part of the list.
+    std::vector<PairColumns>& thread_columns() { return thread_columns_; }
 
   private:
-    // The library's writers (the search and the Verlet list) fill the columns through
-    // detail::ListWriter (lib/detail/list_writer.hpp).
-    friend struct detail::ListWriter;
-    PairArray<std::uint32_t> i_, j_;
-    PairArray<std::int32_t> shifts_;
-    PairArray<double> distances_, vectors_;
-    std::vector<std::size_t> offsets_;
-    // Per-thread batch columns of a batched compute() (lib/detail/ordered_output.hpp), kept so
-    // that their memory is reused by the next call instead of being faulted in again.
-    std::vector<NeighborList> partial_;
+    PairColumns columns_;
+    std::vector<PairColumns> thread_columns_;
 };
 
 /// A block of pairs handed to for_each_pair()'s visitor: `count` pairs, struct-of-arrays.
@@ -232,13 +188,17 @@ struct SearchInfo {
 };
 
 /// Work of each unit threads split (cells, buckets or leaves, in visiting order): its atoms, the
-/// occupancy-moment estimate compute() balances (cost_model.hpp) and the distance tests its
+/// occupancy-moment estimate compute() balances (the cost model) and the distance tests its
 /// candidates really cost. For load-balance benchmarks and tests.
 struct UnitWork {
     std::vector<double> atoms;
     std::vector<double> estimated;
     std::vector<double> measured;
 };
+
+namespace detail {
+struct SearchState; // lib/search/search_state.hpp
+} // namespace detail
 
 /// The search structure for one configuration. build() once, then compute() and/or
 /// for_each_pair(); rebuild when positions or the box change. An object can be reused to keep

@@ -7,7 +7,6 @@
 
 #include <cmath>
 
-#include "detail/list_writer.hpp"
 #include "tricell/error.hpp"
 
 namespace tricell {
@@ -65,25 +64,22 @@ ShellNeighborList compute_neighbors(const Box& box, PointsView positions,
     for (std::size_t k = 1; k < out.offsets.size(); ++k) {
         out.offsets[k] += out.offsets[k - 1];
     }
-    using W = detail::ListWriter;
+    PairColumns& columns = list.columns();
     if (cutoffs.size() > 1) {
         std::vector<std::size_t> order(pairs);
         std::vector<std::size_t> next(out.offsets.begin(), out.offsets.end() - 1);
         for (std::size_t p = 0; p < pairs; ++p) {
             order[next[shell_of(p)]++] = p;
         }
-        detail::gather(W::i(list), order, 1);
-        detail::gather(W::j(list), order, 1);
-        detail::gather(W::shifts(list), order, 3);
-        detail::gather(W::vectors(list), order, 3);
-        if (options.quantities.distances) {
-            detail::gather(W::distances(list), order, 1);
+        if (!options.quantities.distances) {
+            columns.distances.clear(); // not asked for: not worth reordering
         }
+        columns.permute(order);
     }
     if (!options.quantities.distances) {
-        W::distances(list).clear();
+        columns.distances.clear();
     }
-    W::offsets(list).clear();
+    columns.offsets.clear();
     return out;
 }
 

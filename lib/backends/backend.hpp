@@ -16,7 +16,7 @@
 
 #include <Eigen/Core>
 
-#include "detail/candidate_scan.hpp"
+#include "search/candidate_scan.hpp"
 #include "tricell/box.hpp"
 #include "tricell/error.hpp"
 #include "tricell/neighbor_list.hpp"
@@ -38,8 +38,9 @@ struct BinningInput {
     const std::vector<Eigen::Vector3d>& fractional; ///< in [0, 1) along periodic axes
     Eigen::Vector3d lower, upper;                   ///< extent of the positions, per axis
     double search_radius;                           ///< largest cutoff plus a rounding margin
-    const NeighborOptions& options;                 ///< tuning knobs (half, max_cells, ...)
+    const NeighborOptions& options;                 ///< tuning knobs (half, leaf_size, ...)
     std::size_t threads = 1;                        ///< threads the binning may use
+    std::size_t max_cells = 0;                      ///< cap of the dense and linked grids
 };
 
 class Backend {

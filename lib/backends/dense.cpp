@@ -18,8 +18,7 @@ class DenseBackend final : public Backend {
   public:
     void bin(const BinningInput& input, std::vector<std::uint32_t>& order) override {
         const std::size_t n = input.fractional.size();
-        cells_.build(input, input.options.max_cells != 0 ? input.options.max_cells : 4 * n + 64,
-                     true);
+        cells_.build(input, input.max_cells, true);
         std::vector<std::uint32_t> cell_of(n);
         parallel_ranges(n, input.threads, [&](std::size_t begin, std::size_t end, std::size_t) {
             for (std::size_t i = begin; i < end; ++i) {

@@ -10,12 +10,11 @@
 // through the images that can bring it within the radius, |T| < radius + |x_b - x_a| (the exact
 // closest approach of that pair, |D| >= |T| - |x_b - x_a|): a prefix of the bucketed images, one
 // lookup per pair, tested in one tight loop (CandidateScanner::images). Candidates: N^2 x images,
-// so this pays while that stays below the grid's N x stencil range scans (cost_model.hpp).
+// so this pays while that stays below the grid's N x stencil range scans (the cost model's
+// choose_direct()).
 // The images depend only on the frame, periodicity, radius and reach, so a pooled backend keeps
 // them while those stay the same (the reach's atom spread is rounded up for that), and a search
 // of one cell along a trajectory, or of the same cell again, skips the enumeration.
-// Instructions per call (callgrind, issue 13): the per-pair prefix took 8-atom Si at rc 5 from
-// 121k to 77k, the kept images 1-atom at rc 8 from 45k to 20k.
 //
 // Half lists take a < b through every image and a == b through the positive half of the images
 // (the scanner orients what it is given canonically). The work units are the atoms a.

@@ -1,5 +1,7 @@
 #include "backends/grid_neighbourhood.hpp"
 
+#include "search/policy.hpp"
+
 #include <algorithm>
 
 namespace tricell::detail {
@@ -11,11 +13,9 @@ void GridNeighbourhood::build(const BinningInput& input, std::size_t max_cells, 
     grid_options.max_cells = max_cells;
     grid_ = CellGrid(input.frame, grid_options, input.lower, input.upper);
 
-    // Exact pruning solves a small quadratic problem per boundary offset (~1000 instructions);
-    // worth it only when an offset leads to more distance tests than that, about N^2 / C / 5.
-    const double n = double(input.fractional.size());
-    const double cells = double(grid_.dims()[0]) * grid_.dims()[1] * grid_.dims()[2];
-    const bool exact_pruning = n * n / cells > 200;
+    const bool exact_pruning =
+        exact_stencil_pruning(double(input.fractional.size()),
+                              double(grid_.dims()[0]) * grid_.dims()[1] * grid_.dims()[2]);
     stencil_ = input.options.half
                    ? Stencil::half(grid_, input.frame, input.search_radius, exact_pruning)
                    : Stencil::full(grid_, input.frame, input.search_radius, exact_pruning);

@@ -1,15 +1,15 @@
-// The compact hash backend (Ihmsen et al. 2011; design note 004): the same fractional cells as
-// the dense grid at the full resolution the cutoff asks for, with no cap, but only the non-empty
-// cells are stored, so memory is O(N) whatever the volume (a droplet in a huge box, two clusters
-// far apart along open axes). The atoms are sorted by cell (a, b, c lexicographic, c fastest), so
-// a cell's atoms are contiguous and the non-empty cells of one stencil row are consecutive. A
-// table of about 2 N slots maps a cell's integer coordinates (hash: coordinates times large
-// primes, XOR, modulo the table size) to the non-empty cells stored in that slot; each is checked
-// against its own coordinates, so a collision costs a comparison and never a miss or a duplicate.
-// A neighbour cell is found from the integer coordinates plus a stencil offset, wrapped along
-// periodic axes (the wrap gives the image shift, as in the dense grid); consecutive cells of a
-// row found next to each other in the sorted order are scanned as one range. The work units are
-// the non-empty cells.
+// The compact hash backend (Ihmsen et al. 2011, "A parallel SPH implementation on multi-core
+// CPUs"): the same fractional cells as the dense grid at the full resolution the cutoff asks for,
+// with no cap, but only the non-empty cells are stored, so memory is O(N) whatever the volume (a
+// droplet in a huge box, two clusters far apart along open axes). The atoms are sorted by cell (a,
+// b, c lexicographic, c fastest), so a cell's atoms are contiguous and the non-empty cells of one
+// stencil row are consecutive. A table of about 2 N slots maps a cell's integer coordinates (hash:
+// coordinates times large primes, XOR, modulo the table size) to the non-empty cells stored in that
+// slot; each is checked against its own coordinates, so a collision costs a comparison and never a
+// miss or a duplicate. A neighbour cell is found from the integer coordinates plus a stencil
+// offset, wrapped along periodic axes (the wrap gives the image shift, as in the dense grid);
+// consecutive cells of a row found next to each other in the sorted order are scanned as one range.
+// The work units are the non-empty cells.
 #include <algorithm>
 #include <limits>
 #include <numeric>

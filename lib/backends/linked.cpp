@@ -15,8 +15,7 @@ class LinkedBackend final : public Backend {
   public:
     void bin(const BinningInput& input, std::vector<std::uint32_t>& order) override {
         const std::size_t n = input.fractional.size();
-        cells_.build(input, input.options.max_cells != 0 ? input.options.max_cells : 4 * n + 64,
-                     true);
+        cells_.build(input, input.max_cells, true);
         std::vector<std::uint32_t> cell_of(n);
         order.resize(n);
         for (std::size_t i = 0; i < n; ++i) {

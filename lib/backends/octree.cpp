@@ -1,6 +1,6 @@
-// The adaptive octree backend (design note 001's adaptive grid): a tree over fractional space
-// whose leaves hold at most n_max atoms, so cells are small where the atoms are dense and large
-// (or absent) where they are sparse, and memory is O(N) whatever the volume.
+// The adaptive octree backend (an adaptive grid: cells refined where the atoms are dense): a tree
+// over fractional space whose leaves hold at most n_max atoms, so cells are small where the atoms
+// are dense and large (or absent) where they are sparse, and memory is O(N) whatever the volume.
 //
 // Build. The root is the atoms' tight bounding box in fractional coordinates (within [0, 1) on
 // periodic axes, the atoms' extent on open ones). A node with more than n_max atoms is split at
@@ -36,7 +36,7 @@
 #include <cmath>
 
 #include "backends/backend.hpp"
-#include "tricell/cost_model.hpp"
+#include "cost_model/cost_model.hpp"
 #include "tricell/stencil.hpp"
 
 namespace tricell::detail {

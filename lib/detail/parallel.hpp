@@ -3,11 +3,10 @@
 // exception in range order, so that an error names the same (lowest) item whatever the thread
 // count.
 //
-// A thread start and join costs 20-70 us on a loaded two-core machine (measured here, median of
-// 200), and a threaded build has eight phases (checks, wrap, binning, the three passes of the
-// cell sort, the atom table) plus the search itself: started per phase, those threads cost about
-// as much as a 4096-atom search (1.8 ms) gains from the second thread, so two threads ran it 2x
-// slower than one. A ThreadTeam therefore starts its helpers once, on its first phase, and hands
+// A threaded build has eight phases (checks, wrap, binning, the three passes of the cell sort,
+// the atom table) plus the search itself, and starting and joining threads per phase costs as
+// much as a search of a few thousand atoms gains from them. A ThreadTeam therefore starts its
+// helpers once, on its first phase, and hands
 // them each later phase (they spin briefly, then sleep, between phases); a TeamScope makes a team
 // the one every run_in_threads() and parallel_ranges() of the calling thread uses until the scope
 // ends, so a search's phases in other files (the backends' binning, the cell sort) share it

@@ -1,10 +1,8 @@
 // Copies bytes to memory that will not be read again soon (a large neighbour list being filled)
 // with non-temporal stores: the destination's cache lines are written without first being read
 // (an ordinary store reads each line from memory before overwriting it) and do not evict the
-// search's working set. On this kind of machine storing a list of 9 million (i, j, S, d) records
-// this way took ~0.6x the time of ordinary stores (benchmarks/ceiling_probe, store_streaming_s
-// against store_s, loaded machine); the threaded search copies its batches out this way (the
-// same batches on one thread, scan then copy, were not faster than storing directly). SSE2 only,
+// search's working set (benchmarks/ceiling_probe compares the two ways of storing). The threaded
+// search copies its batches out this way; on one thread the search stores directly. SSE2 only,
 // which every x86-64 has, so there is no run-time dispatch; elsewhere a plain memcpy.
 #pragma once
 

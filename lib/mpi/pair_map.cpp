@@ -6,15 +6,6 @@
 
 namespace tricell::mpi {
 
-void DistributedPairs::clear() {
-    owned.clear();
-    i.clear();
-    j.clear();
-    shifts.clear();
-    distances.clear();
-    vectors.clear();
-}
-
 namespace detail {
 
 NeighborOptions local_options(const NeighborOptions& caller) {
@@ -37,7 +28,7 @@ bool canonical(std::uint64_t i, std::uint64_t j, const std::int32_t s[3]) {
     return s[0] > 0 || (s[0] == 0 && (s[1] > 0 || (s[1] == 0 && s[2] > 0)));
 }
 
-void sort_pairs(DistributedPairs& p, const Quantities& q) {
+void sort_pairs(DistributedPairs& p) {
     const std::size_t n = p.size();
     std::vector<std::size_t> order(n);
     std::iota(order.begin(), order.end(), std::size_t(0));
@@ -47,20 +38,12 @@ void sort_pairs(DistributedPairs& p, const Quantities& q) {
     };
     std::sort(order.begin(), order.end(),
               [&](std::size_t a, std::size_t b) { return key(a) < key(b); });
-    DistributedPairs sorted;
-    for (std::size_t k : order) {
-        sorted.owned.push_back(p.owned[k]);
-        sorted.i.push_back(p.i[k]);
-        sorted.j.push_back(p.j[k]);
-        sorted.shifts.insert(sorted.shifts.end(), &p.shifts[3 * k], &p.shifts[3 * k] + 3);
-        if (q.distances) {
-            sorted.distances.push_back(p.distances[k]);
-        }
-        if (q.vectors) {
-            sorted.vectors.insert(sorted.vectors.end(), &p.vectors[3 * k], &p.vectors[3 * k] + 3);
-        }
+    std::vector<std::uint32_t> owned(n);
+    for (std::size_t k = 0; k < n; ++k) {
+        owned[k] = p.owned[order[k]];
     }
-    p = std::move(sorted);
+    p.owned.swap(owned);
+    p.permute(order);
 }
 
 } // namespace
@@ -126,7 +109,7 @@ void map_pairs(const NeighborList& local, const Halo& halo, bool half, bool sort
     out.distances.resize(quantities.distances ? n : 0);
     out.vectors.resize(quantities.vectors ? 3 * n : 0);
     if (sorted) {
-        sort_pairs(out, quantities);
+        sort_pairs(out);
         if (!quantities.shifts) {
             out.shifts.clear();
         }

@@ -74,7 +74,8 @@ accumulated frame by frame: bins of width rmax / bins over [0, rmax), exact shel
 total g normalised with N * N / V (ASE's get_rdf, freud's exact mode), partial g_AB with
 N_A * N_B / V (ASE's elements= normalises with N_A * N / V: its value is ours times N_B / N),
 and the running coordination number n(r) at each bin's upper edge. Every axis must be
-periodic. Curves are averages over the frames (README: Analysis).)doc")
+periodic. Curves are plain averages over the frames, which may differ in cell and atom count; a
+partial averages over the frames that hold both species.)doc")
         .def(py::init(&make_rdf), py::arg("rmax"), py::arg("bins"), py::arg("threads") = 1,
              py::arg("backend") = "auto")
         .def("add_frame", &add_frame, py::arg("points"), py::arg("box"), py::arg("periodic") = true,

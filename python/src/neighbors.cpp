@@ -260,7 +260,7 @@ void bind_neighbors(py::module_& m) {
     const std::size_t verlet_max_pairs = VerletOptions().neighbors.max_pairs;
     // The docstrings name the defaults and backends of the library; pybind11 copies them.
     const std::string doc = R"doc(
-Periodic neighbour list in a triclinic box (CONTRACT.md section 2).
+Periodic neighbour list in a triclinic box.
 
 NeighborList(cutoff, full=True, sorted=False, threads=1, backend="auto", max_pairs=)doc" +
                             std::to_string(default_max_pairs) + R"doc()

@@ -40,6 +40,9 @@ class Structure(NamedTuple):
 def read(path, format=None):
     """Reads a CIF (*.cif), VASP POSCAR/CONTCAR (POSCAR*, CONTCAR*, *.vasp, *.poscar) or
     extended XYZ (*.xyz, *.extxyz) file; format ("cif", "poscar", "xyz") overrides the guess
-    from the name. A CIF is expanded to the full unit cell (README: the tricell command).
+    from the name. A CIF is expanded to the full unit cell: for each atom-site row in file
+    order, its images in symmetry-operator order, wrapped into [0, 1), images of one row closer
+    than 0.01 Angstrom kept once (so atoms on special positions appear once); atom indices are
+    0-based in that order.
     Raises OSError with "FILE:LINE: what is wrong" for a missing or malformed file."""
     return Structure(*_read(os.fspath(path), format or ""))

@@ -252,7 +252,7 @@ TEST(NeighborList, RejectsPositionTooFarToWrap) {
 }
 
 TEST(NeighborList, BatchedOutputEqualsBruteForceForAnyThreadCount) {
-    // The batched in-place output of 2 to 4 threads (lib/detail/ordered_output.hpp) against one
+    // The batched in-place output of 2 to 4 threads (lib/search/ordered_output.hpp) against one
     // thread storing directly and against brute force: a list of about 294000 pairs, and
     // clustered atoms whose list is several times the per-cell estimate, so the final columns
     // must grow while batches are copied in.

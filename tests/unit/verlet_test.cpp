@@ -16,7 +16,7 @@
 #include "support/brute_force.hpp"
 #include "support/expect_throw_msg.hpp"
 #include "support/random_boxes.hpp"
-#include "tricell/cost_model.hpp"
+#include "tricell/tuning.hpp"
 #include "tricell/error.hpp"
 #include "tricell/verlet.hpp"
 

@@ -1,7 +1,8 @@
 // Domain boundaries placed by estimated work: equal volume, equal atoms, or the occupancy-moment
-// model of design note 001.
+// model of the serial search's cost model.
 //
-// The work model is the lead's occupancy-moment estimate (tricell/cost_model.hpp, region_work):
+// The work model is the serial search's occupancy-moment estimate (region_work of the library's
+// cost model):
 // bin all atoms (over all ranks) into a grid of cells of about the cutoff per axis (perpendicular
 // widths, as the serial search does); a set of C cells (a slab, a domain) paired with
 // K = stencil_cells(1) = 27 stencil cells costs
@@ -25,9 +26,9 @@
 #include <vector>
 
 #include "tricell/box.hpp"
-#include "tricell/cost_model.hpp"
 #include "tricell/mpi/decomposition.hpp"
 #include "tricell/mpi/export.hpp"
+#include "tricell/tuning.hpp"
 #include "tricell/types.hpp"
 
 namespace tricell::mpi {

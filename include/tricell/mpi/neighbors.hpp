@@ -32,25 +32,18 @@
 
 namespace tricell::mpi {
 
-/// The pairs one rank reports, struct-of-arrays. i is always one of this rank's atoms.
-struct TRICELL_MPI_API DistributedPairs {
+/// The pairs one rank reports, in the shared pair columns (tricell/pair_columns.hpp) with global
+/// ids as i and j; i is always one of this rank's atoms. S, d and D are stored as
+/// Quantities asks.
+struct TRICELL_MPI_API DistributedPairs : BasicPairColumns<std::uint64_t> {
     /// Index of i among the caller's owned atoms (LocalAtoms order), per pair.
     std::vector<std::uint32_t> owned;
-    /// Global ids.
-    std::vector<std::uint64_t> i, j;
-    /// S, 3 ints per pair (if Quantities::shifts).
-    std::vector<std::int32_t> shifts;
-    /// d (if Quantities::distances).
-    std::vector<double> distances;
-    /// D = x_j - x_i + H S, 3 doubles per pair (if Quantities::vectors).
-    std::vector<double> vectors;
 
-    std::size_t size() const { return i.size(); }
-    Shift shift(std::size_t k) const {
-        return Shift(shifts[3 * k], shifts[3 * k + 1], shifts[3 * k + 2]);
-    }
     /// Empties the lists, keeping their capacity.
-    void clear();
+    void clear() {
+        BasicPairColumns<std::uint64_t>::clear();
+        owned.clear();
+    }
 };
 
 /// Halo plus local search for one configuration. build() is collective; compute() is local.

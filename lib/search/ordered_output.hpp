@@ -12,6 +12,9 @@
 // (two threads finishing neighbouring batches at about the same time). Only a thread holding many
 // such batches (a stalled neighbour), or at the end, waits.
 //
+// ordered_search() is the whole protocol: the threads, their tickets, each thread's queue of
+// scanned batches not yet placed, and the copies.
+//
 // The columns start at the estimated size (untouched capacity is never resident) and grow,
 // rarely, under an exclusive lock while no copy is running.
 #pragma once
@@ -25,8 +28,10 @@
 #include <thread>
 #include <vector>
 
-#include "detail/pair_sink.hpp"
+#include "detail/parallel.hpp"
 #include "detail/stream_copy.hpp"
+#include "search/pair_sink.hpp"
+#include "search/policy.hpp"
 #include "tricell/error.hpp"
 
 namespace tricell::detail {
@@ -35,7 +40,7 @@ class OrderedOutput {
   public:
     /// Fills `columns` (resized to `capacity` now, trimmed by finish()) with `batches` batches;
     /// at most `limit` pairs in all (0: no limit).
-    OrderedOutput(const PairColumns& columns, std::size_t batches, std::size_t capacity,
+    OrderedOutput(const SinkColumns& columns, std::size_t batches, std::size_t capacity,
                   std::size_t limit)
         : columns_(columns), limit_(limit), size_(batches, unknown), offset_(batches, 0) {
         resize(limit_ != 0 ? std::min(capacity, limit_) : capacity);
@@ -79,7 +84,7 @@ class OrderedOutput {
     }
 
     /// Copies pairs [start, start + size) of `from` (the same columns stored) to `offset`.
-    void write(std::size_t offset, const PairColumns& from, std::size_t start, std::size_t size) {
+    void write(std::size_t offset, const SinkColumns& from, std::size_t start, std::size_t size) {
         {
             std::shared_lock<std::shared_mutex> lock(grow_mutex_);
             if (offset + size <= capacity_) {
@@ -104,7 +109,7 @@ class OrderedOutput {
   private:
     static constexpr std::size_t unknown = std::numeric_limits<std::size_t>::max();
 
-    void copy(std::size_t offset, const PairColumns& from, std::size_t start, std::size_t size) {
+    void copy(std::size_t offset, const SinkColumns& from, std::size_t start, std::size_t size) {
         if (size == 0) {
             return;
         }
@@ -136,7 +141,7 @@ class OrderedOutput {
         }
     }
 
-    PairColumns columns_;
+    SinkColumns columns_;
     std::size_t limit_ = 0;
     std::size_t capacity_ = 0; // guarded by grow_mutex_
     std::shared_mutex grow_mutex_;
@@ -149,5 +154,83 @@ class OrderedOutput {
     std::atomic<std::size_t> placed_{0};
     std::atomic<bool> aborted_{false};
 };
+
+/// Fills `final_columns` with the batches of `plan` on `threads` threads, in batch order (see
+/// above): scan(b, sink) scans batch b into a PairSink. `columns_of` picks the stored columns of
+/// a thread's own PairColumns; `scratch` holds those (kept between calls, one per thread).
+/// `capacity` is the room to start with, `limit` the pair limit (0: none). Rethrows the first
+/// error of any thread after all have stopped.
+template <class ColumnsOf, class Scan>
+void ordered_search(const SinkColumns& final_columns, const BatchPlan& plan, std::size_t capacity,
+                    std::size_t limit, std::size_t threads, std::vector<PairColumns>& scratch,
+                    const ColumnsOf& columns_of, const Scan& scan) {
+    const std::size_t batches = plan.size();
+    OrderedOutput output(final_columns, batches, capacity, limit);
+    scratch.resize(threads);
+    std::vector<std::exception_ptr> errors(threads);
+    std::atomic<std::size_t> next{0};
+    run_in_threads(threads, [&](std::size_t t) {
+        try {
+            const SinkColumns columns = columns_of(scratch[t]);
+            // This thread's scanned batches not yet copied out: (batch, first pair in
+            // `columns`, pairs), in batch order; `used` pairs of `columns` are taken.
+            struct Pending {
+                std::size_t batch, start, size;
+            };
+            std::vector<Pending> pending;
+            std::size_t used = 0;
+            auto copy_placed = [&](std::size_t placed) {
+                std::size_t k = 0;
+                for (; k < pending.size() && pending[k].batch < placed; ++k) {
+                    output.write(output.offset(pending[k].batch), columns, pending[k].start,
+                                 pending[k].size);
+                }
+                pending.erase(pending.begin(), pending.begin() + std::ptrdiff_t(k));
+                if (pending.empty()) {
+                    used = 0;
+                }
+            };
+            // Waits for the oldest pending batch to be placed; false when another thread failed.
+            auto drain_oldest = [&] {
+                const std::size_t placed = output.wait_placed(pending.front().batch);
+                if (placed == 0) {
+                    return false;
+                }
+                copy_placed(placed);
+                return true;
+            };
+            for (;;) {
+                const std::size_t b = next.fetch_add(1);
+                if (b >= batches || output.aborted()) {
+                    break;
+                }
+                PairSink sink(columns, limit, plan.reserve[b], used);
+                scan(b, sink);
+                pending.push_back(Pending{b, used, sink.size() - used});
+                used = sink.size();
+                copy_placed(output.finished(b, pending.back().size));
+                // Run ahead of a stalled neighbour (a descheduled thread) by a bounded amount
+                // only.
+                if (pending.size() >= max_pending_batches && !drain_oldest()) {
+                    break;
+                }
+            }
+            while (!pending.empty() && drain_oldest()) {
+            }
+        } catch (...) {
+            errors[t] = std::current_exception();
+            output.abort();
+        }
+    });
+    for (PairColumns& c : scratch) {
+        c.clear();
+    }
+    for (const std::exception_ptr& e : errors) {
+        if (e) {
+            std::rethrow_exception(e);
+        }
+    }
+    output.finish();
+}
 
 } // namespace tricell::detail

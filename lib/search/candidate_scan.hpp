@@ -20,7 +20,7 @@
 
 #include <Eigen/Core>
 
-#include "detail/pair_sink.hpp"
+#include "search/pair_sink.hpp"
 #include "tricell/detail/distance_kernel.hpp"
 #include "tricell/neighbor_list.hpp"
 
@@ -240,9 +240,7 @@ class CandidateScanner {
     // the first pass writes i, j and S of either without a branch and lists the pairs turned
     // around; only those have D and d^2 computed again, in their own orientation (see counts()).
     // In the rare block where that second test fails, keep_some() redoes the block (it reads
-    // d^2 only of the pairs not turned around, which this leaves as they were). Against
-    // keep_some() on a loaded machine, medians of interleaved runs: diamond Si 8x8x8 1.32 ->
-    // 1.08 ms, random 1e4 atoms 12.4 -> 11.2 ms.
+    // d^2 only of the pairs not turned around, which this leaves as they were).
     void keep_oriented(const Side& side, std::uint32_t a_first, std::uint32_t start,
                        const std::uint32_t* hits, double* d_sq, std::uint32_t found,
                        const ImageShift& s) {
@@ -381,9 +379,8 @@ class CandidateScanner {
     }
 
     // Half lists keep (i, j, S) with i < j, or i == j with S lexicographically positive in the
-    // caller's frame; true when the found orientation is the other one. (Computing both
-    // orientations' D for every pair and choosing without a branch was measured no faster on
-    // diamond Si or random atoms; keep_oriented() recomputes only the pairs turned around.)
+    // caller's frame; true when the found orientation is the other one (keep_oriented()
+    // recomputes D only for the pairs turned around).
     bool flip(std::uint32_t i, std::uint32_t j, int sa, int sb, int sc) const {
         if (i != j) {
             return i > j;

@@ -1,9 +1,7 @@
-#include "tricell/cost_model.hpp"
+#include "tricell/tuning.hpp"
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
-#include <numeric>
 
 #include "tricell/error.hpp"
 
@@ -12,54 +10,6 @@ namespace tricell {
 namespace {
 constexpr double pi = 3.14159265358979323846;
 } // namespace
-
-double occupancy_work(double atoms, double neighbours, const OccupancyCosts& costs) {
-    if (atoms <= 0) {
-        return 0;
-    }
-    return costs.per_visit * neighbours + costs.per_atom * atoms +
-           costs.per_test * neighbours * atoms * atoms;
-}
-
-double region_work(const OccupancyMoments& m, double neighbours, const OccupancyCosts& costs) {
-    return costs.per_visit * neighbours * m.nonempty + costs.per_atom * m.atoms +
-           costs.per_test * neighbours * m.atoms_sq;
-}
-
-double expected_pairs(double atoms, double volume, double sphere) {
-    if (!(volume > 0) || !(atoms > 0)) {
-        return 0;
-    }
-    return atoms * atoms / volume * sphere;
-}
-
-std::vector<std::size_t> split_work(const std::vector<double>& work, std::size_t parts) {
-    std::vector<std::size_t> bounds{0};
-    const std::size_t units = work.size();
-    const double total = std::accumulate(work.begin(), work.end(), 0.0);
-    if (parts > 1 && total > 0) {
-        double running = 0;
-        for (std::size_t u = 0; u + 1 < units && bounds.size() < parts; ++u) {
-            running += work[u];
-            if (running >= total * double(bounds.size()) / double(parts)) {
-                bounds.push_back(u + 1);
-            }
-        }
-    }
-    bounds.push_back(units);
-    return bounds;
-}
-
-bool choose_direct(std::size_t atoms, double min_width, double radius) {
-    if (!std::isfinite(min_width)) {
-        return atoms <= 12;
-    }
-    return (atoms <= 12 && min_width < 2 * radius) || (atoms <= 32 && min_width < radius);
-}
-
-SearchBackend choose_grid_backend(double full_resolution_cells, double max_cells) {
-    return full_resolution_cells <= max_cells ? SearchBackend::dense : SearchBackend::hash;
-}
 
 double cells_per_list_radius(CellSize rule, double cutoff, double skin) {
     switch (rule) {
@@ -204,71 +154,6 @@ SkinPrediction tune_skin(const SkinCostModel& model) {
         }
     }
     return best;
-}
-
-std::size_t octree_leaf_size(const OctreeCosts& costs) {
-    return std::size_t(std::max(1.0, std::round(costs.leaf_size)));
-}
-
-double grid_cost_per_atom(SearchBackend grid, double density, double cutoff,
-                          const OctreeCosts& costs) {
-    const double* g = grid == SearchBackend::hash ? costs.hash : costs.dense;
-    const double lambda = density * cutoff * cutoff * cutoff;
-    const double visits = lambda > 1e-12 ? (1 - std::exp(-lambda)) / lambda : 1.0;
-    constexpr double stencil = 27;
-    return g[0] + g[1] * stencil * visits + g[2] * stencil * lambda;
-}
-
-double octree_cost_per_atom(double density, double cutoff, const OctreeCosts& costs) {
-    const double x = density * cutoff * cutoff * cutoff;
-    const double n = costs.leaf_occupancy;
-    const double tests =
-        8 * n + 24 * std::cbrt(n * n * x) + 6 * pi * std::cbrt(n * x * x) + 4 * pi / 3 * x;
-    return costs.octree[0] + costs.octree[1] * tests;
-}
-
-bool grid_always_cheaper(SearchBackend grid, double cutoff, const OctreeCosts& costs) {
-    // Both costs depend on the density only through x = rho r^3, so the answer does not depend
-    // on the cutoff; the scan (70 points, each with an exp and two cube roots: about 50k
-    // instructions, as much as a whole 1-atom search) is kept per thread for the last grid and
-    // constants, since auto asks it on every build.
-    struct Memo {
-        bool valid = false;
-        SearchBackend grid = SearchBackend::dense;
-        OctreeCosts costs;
-        bool cheaper = false;
-    };
-    thread_local Memo memo;
-    if (memo.valid && memo.grid == grid &&
-        std::memcmp(&memo.costs, &costs, sizeof(OctreeCosts)) == 0) {
-        return memo.cheaper;
-    }
-    const double volume = cutoff * cutoff * cutoff;
-    bool cheaper = true;
-    for (double x = 1e-6; x <= 16; x *= 1.25) { // up to the densest fitted (0.1 /A^3 at 5 A)
-        if (grid_cost_per_atom(grid, x / volume, cutoff, costs) >=
-            octree_cost_per_atom(x / volume, cutoff, costs)) {
-            cheaper = false;
-            break;
-        }
-    }
-    memo = Memo{true, grid, costs, cheaper};
-    return cheaper;
-}
-
-double octree_crossover(SearchBackend grid, double rho_hi, double rho_lo, double cutoff,
-                        const OctreeCosts& costs) {
-    const double saved_lo = rho_lo * (grid_cost_per_atom(grid, rho_lo, cutoff, costs) -
-                                      octree_cost_per_atom(rho_lo, cutoff, costs));
-    const double lost_hi = rho_hi * (octree_cost_per_atom(rho_hi, cutoff, costs) -
-                                     grid_cost_per_atom(grid, rho_hi, cutoff, costs));
-    if (saved_lo <= 0) {
-        return lost_hi < 0 ? 1.0 : 0.0;
-    }
-    if (lost_hi <= 0) {
-        return 1.0;
-    }
-    return saved_lo / (saved_lo + lost_hi);
 }
 
 } // namespace tricell

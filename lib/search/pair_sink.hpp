@@ -25,14 +25,20 @@ namespace tricell::detail {
     throw PairLimitError("the neighbour list has too many pairs", double(limit) + 1, limit);
 }
 
-/// The columns a storing sink fills (null: not stored).
-struct PairColumns {
+/// The columns of a PairColumns that a storing sink fills (null: not stored).
+struct SinkColumns {
     PairArray<std::uint32_t>* i = nullptr;
     PairArray<std::uint32_t>* j = nullptr;
     PairArray<std::int32_t>* shifts = nullptr;
     PairArray<double>* distances = nullptr;
     PairArray<double>* vectors = nullptr;
 };
+
+/// The columns of `c` that a search stores: i and j always, S, d and D when asked.
+inline SinkColumns stored_columns(PairColumns& c, bool shifts, bool distances, bool vectors) {
+    return SinkColumns{&c.i, &c.j, shifts ? &c.shifts : nullptr, distances ? &c.distances : nullptr,
+                       vectors ? &c.vectors : nullptr};
+}
 
 class PairSink {
   public:
@@ -42,7 +48,7 @@ class PairSink {
 
     /// Storing mode: appends to `columns` after their first `start` pairs (kept), starting with
     /// room for `initial` more, never more than `limit` pairs in all (0: no limit).
-    PairSink(const PairColumns& columns, std::size_t limit, std::size_t initial,
+    PairSink(const SinkColumns& columns, std::size_t limit, std::size_t initial,
              std::size_t start = 0)
         : columns_(columns), size_(start), limit_(limit) {
         resize(limit_ != 0 ? std::min(start + initial, std::max(start, limit_)) : start + initial);
@@ -195,7 +201,7 @@ class PairSink {
         }
     }
 
-    PairColumns columns_;
+    SinkColumns columns_;
     std::size_t size_ = 0;
     std::uint32_t* pi_ = nullptr;
     std::uint32_t* pj_ = nullptr;

@@ -1,0 +1,189 @@
+#include "search/policy.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <thread>
+
+#include "cost_model/cost_model.hpp"
+#include "detail/parallel.hpp"
+
+namespace tricell::detail {
+
+namespace {
+
+constexpr double pi = 3.14159265358979323846;
+
+std::size_t hardware_threads() {
+    return std::max<std::size_t>(1, std::thread::hardware_concurrency());
+}
+
+} // namespace
+
+std::size_t build_threads(const NeighborOptions& options, std::size_t atoms) {
+    // Explicit threads from 16 atoms per thread (so that the property tests run the threaded
+    // phases on small systems); automatic ones from 16384, where a phase outweighs waking a
+    // thread.
+    return options.threads > 0 ? threads_for(atoms, std::size_t(options.threads), 16)
+                               : threads_for(atoms, hardware_threads(), 16384);
+}
+
+std::size_t compute_threads(const NeighborOptions& options, double estimated_pairs,
+                            std::size_t units) {
+    std::size_t threads = options.threads > 0 ? std::size_t(options.threads) : hardware_threads();
+    // With automatic threads, small searches are not worth a thread.
+    if (options.threads == 0 && (estimated_pairs < 20000 || units < 4 * threads)) {
+        threads = 1;
+    }
+    return std::max<std::size_t>(1, std::min(threads, units));
+}
+
+std::size_t call_threads(const NeighborOptions& options) {
+    return options.threads > 0 ? std::size_t(options.threads) : hardware_threads();
+}
+
+std::size_t cell_cap(const NeighborOptions& options, std::size_t atoms) {
+    return options.max_cells != 0 ? options.max_cells : 4 * atoms + 64;
+}
+
+bool exact_stencil_pruning(double atoms, double cells) {
+    // Solving one offset's closest approach costs about 1000 instructions, an offset leads to
+    // about N^2 / C / 5 distance tests.
+    return atoms * atoms / cells > 200;
+}
+
+SearchBackend automatic_backend(const Box& box, const std::vector<Eigen::Vector3d>& fractional,
+                                const Eigen::Vector3d& lower, const Eigen::Vector3d& upper,
+                                double search_radius, const NeighborOptions& options) {
+    const std::size_t n = fractional.size();
+    double min_width = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < 3; ++k) {
+        if (box.periodic(k)) {
+            min_width = std::min(min_width, box.perpendicular_widths()[k]);
+        }
+    }
+    if (choose_direct(n, min_width, search_radius)) {
+        return SearchBackend::direct;
+    }
+    const double h = search_radius / options.cells_per_cutoff;
+    double cells = 1;
+    for (int k = 0; k < 3; ++k) {
+        const double span = box.periodic(k) ? 1.0 : std::max(upper[k] - lower[k], 0.0);
+        cells *= std::max(1.0, std::floor(span * box.perpendicular_widths()[k] / h));
+    }
+    const SearchBackend grid = choose_grid_backend(cells, double(cell_cap(options, n)));
+    const OctreeCosts costs;
+    if (grid_always_cheaper(grid, search_radius, costs)) {
+        return grid; // at no density does the octree win: no need to look at the atoms
+    }
+
+    // The two-density model's T in its general form: each structure's cost per atom u(rho)
+    // summed over the atoms, each at its local density, estimated from a sample of at most 4096
+    // atoms binned in coarse cells of side >= 2 r (keys sorted, runs counted).
+    std::array<double, 3> origin{}, scale{};
+    std::array<std::uint64_t, 3> dims{};
+    double cell_volume = box.volume();
+    for (int k = 0; k < 3; ++k) {
+        const std::size_t a = std::size_t(k);
+        const double span = box.periodic(k) ? 1.0 : upper[k] - lower[k];
+        const double width = span * box.perpendicular_widths()[k];
+        dims[a] = std::uint64_t(std::clamp(std::floor(width / (2 * search_radius)), 1.0, 1e6));
+        origin[a] = box.periodic(k) ? 0.0 : lower[k];
+        scale[a] = span > 0 ? double(dims[a]) / span : 0.0;
+        // An open axis thinner than the cutoff counts as one cutoff thick (as the pair estimate).
+        cell_volume *=
+            (box.periodic(k) ? 1.0
+                             : std::max(span, search_radius / box.perpendicular_widths()[k])) /
+            double(dims[a]);
+    }
+    const std::size_t samples = std::min<std::size_t>(n, 4096);
+    std::vector<std::uint64_t> keys(samples);
+    for (std::size_t t = 0; t < samples; ++t) {
+        const Eigen::Vector3d& s = fractional[t * n / samples];
+        std::uint64_t key = 0;
+        for (std::size_t a = 0; a < 3; ++a) {
+            // NaN when a denormal span made the scale inf and an atom sits at the origin
+            // (0 * inf): that atom is in cell 0.
+            const double c = std::floor((s[int(a)] - origin[a]) * scale[a]);
+            key = key * dims[a] +
+                  std::uint64_t(std::clamp(std::isnan(c) ? 0.0 : c, 0.0, double(dims[a] - 1)));
+        }
+        keys[t] = key;
+    }
+    std::sort(keys.begin(), keys.end());
+    const double weight = double(n) / double(samples);
+    double grid_cost = 0, octree_cost = 0;
+    for (std::size_t t = 0; t < samples;) {
+        std::size_t u = t;
+        while (u < samples && keys[u] == keys[t]) {
+            ++u;
+        }
+        const double count = double(u - t);
+        // The atom itself, plus the others of its cell the sample stands for.
+        const double density = (1 + (count - 1) * weight) / cell_volume;
+        grid_cost += count * grid_cost_per_atom(grid, density, search_radius, costs);
+        octree_cost += count * octree_cost_per_atom(density, search_radius, costs);
+        t = u;
+    }
+    // Only a clear win (30%): the per-cell estimate reads the surface cells of a dense cluster as
+    // vapour, which overstates the octree's gain, and the fitted costs scatter by about 20%.
+    return octree_cost < 0.7 * grid_cost ? SearchBackend::octree : grid;
+}
+
+double estimated_system_pairs(const Box& box, std::size_t atoms, const Eigen::Vector3d& lower,
+                              const Eigen::Vector3d& upper, double cutoff, bool half) {
+    double volume = box.volume();
+    for (int k = 0; k < 3; ++k) {
+        if (!box.periodic(k)) {
+            volume *= std::max(upper[k] - lower[k], cutoff / box.perpendicular_widths()[k]);
+        }
+    }
+    const double sphere = 4.0 / 3.0 * pi * std::pow(cutoff, 3);
+    // 0 when sphere and volume both underflowed: no estimate (the sink still enforces max_pairs
+    // on the real count).
+    const double pairs = expected_pairs(double(atoms), volume, sphere) * (half ? 0.5 : 1.0);
+    return std::isnan(pairs) ? 0 : pairs;
+}
+
+std::size_t pair_room(double expected) {
+    return std::isfinite(expected) && expected < 1.6e7
+               ? static_cast<std::size_t>(expected * 1.1) + 1024
+               : std::size_t(1) << 24;
+}
+
+BatchPlan plan_batches(const std::vector<double>& work, const std::vector<double>& expected,
+                       std::size_t threads) {
+    // About batch_pairs pairs a batch: with i, j, S, d about 230 KB of columns, which stay in
+    // the core's L2 until they are copied out.
+    constexpr double batch_pairs = 8192;
+    double total = 0;
+    for (const double e : expected) {
+        total += e;
+    }
+    const double wanted = std::isfinite(total) ? std::ceil(total / batch_pairs) : 1e9;
+    const auto batches = static_cast<std::size_t>(std::clamp(wanted, 4.0 * double(threads), 1e9));
+    BatchPlan plan;
+    plan.bounds = split_work(work, batches);
+    plan.reserve.resize(plan.bounds.size() - 1);
+    for (std::size_t b = 0; b + 1 < plan.bounds.size(); ++b) {
+        double e = 0;
+        for (std::size_t u = plan.bounds[b]; u < plan.bounds[b + 1]; ++u) {
+            e += expected[u];
+        }
+        plan.reserve[b] = pair_room(e);
+    }
+    return plan;
+}
+
+double structure_cost(const Box& box, std::size_t atoms, const NeighborOptions& options) {
+    // Measured on small cells: a call costs about 300 stored pairs, an atom's binning about 3.
+    constexpr double per_call = 300, per_atom = 3;
+    const double n = double(atoms);
+    const double sphere = 4.0 / 3.0 * pi * std::pow(options.cutoff, 3);
+    const double pairs = std::min(expected_pairs(n, std::abs(box.volume()), sphere), n * n * 1e3);
+    return per_call + per_atom * n + (options.half ? 0.5 : 1.0) * pairs;
+}
+
+} // namespace tricell::detail

@@ -1,0 +1,39 @@
+// What a built search holds (NeighborSearch's state), and the one way to make a scanner of it.
+#pragma once
+
+#include <cstddef>
+
+#include <Eigen/Core>
+
+#include "backends/backend.hpp"
+#include "search/candidate_scan.hpp"
+#include "search/registry.hpp"
+#include "tricell/neighbor_list.hpp"
+
+namespace tricell::detail {
+
+struct SearchState {
+    NeighborOptions options;
+    Eigen::Matrix3d h = Eigen::Matrix3d::Identity(); // of the search frame
+    // Shifts in the search frame map to the caller's as S = to_caller * S' (identity unless
+    // the cell was reduced).
+    Eigen::Matrix3i to_caller = Eigen::Matrix3i::Identity();
+    bool reduced_frame = false;
+    double search_radius = 0;
+    double cutoff_sq = 0; // the scan's threshold (of the largest cutoff)
+    std::size_t atom_count = 0;
+    double estimated_pairs = 0;
+    CutoffRule rule;
+    AtomTable atoms;
+    // The backend of the last build, null when no pair can count (all radii zero, ...).
+    Backend* backend = nullptr;
+    BackendPool pool;
+
+    /// A scanner of this search's atoms that hands its pairs to `sink`.
+    CandidateScanner scanner(PairSink& sink) const {
+        return CandidateScanner(atoms, h, cutoff_sq, rule, options.half, to_caller, reduced_frame,
+                                sink);
+    }
+};
+
+} // namespace tricell::detail
