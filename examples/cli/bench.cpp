@@ -3,7 +3,9 @@
 // The structure is read once; the list is computed once as a warm-up and then K times into the
 // same reused NeighborList. Prints one "key value" line per measurement, for people and for
 // benchmarks/compare: pairs, median and minimum seconds, pairs per second, the size of the
-// stored arrays and the peak resident memory of the process.
+// stored arrays and the peak resident memory of the process. --list-backends prints the names
+// --backend takes, from the library's table of backends, so that compare needs no list of its
+// own.
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -21,30 +23,14 @@ namespace tricell::cli {
 
 namespace {
 
-const char* const help =
-    R"(usage: tricell bench FILE --cutoff R [--half] [--quantities ijSdD] [--repeat K]
-                     [--threads T] [--backend B] [--max-pairs N]
-                     [--input-format cif|xyz|poscar]
-
-Times tricell's neighbour list of FILE: one warm-up call, then K timed calls (default 10) into
-a reused list. Prints pairs, median_s, min_s, pairs_per_s, list_mb (the stored arrays),
-base_rss_mb (resident memory after reading FILE, before any search), peak_rss_mb (peak
-resident memory of the whole process), the backend that ran and the cells it stored, one
-"key value" per line.
-
-Options:
-  --cutoff R          cutoff, R > 0 (required)
-  --half              half list (each pair once)
-  --quantities Q      what to store besides i and j: any of S (shifts), d (distances),
-                      D (vectors); default "ijSd"
-  --repeat K          timed calls, K >= 1 (default 10)
-  --threads T         threads, T >= 0, 0 = all hardware threads (default 1)
-  --backend B         auto (default), dense, linked, hash, octree or direct
-  --max-pairs N       refuse lists of more than N pairs before allocating them (default
-                      500000000; 0 = no limit)
-  --input-format F    cif, xyz or poscar, instead of the guess from the file name
-  -h, --help          this help
-)";
+// The names --backend takes, from the library's table of backends (automatic first).
+std::vector<std::string> backend_names() {
+    std::vector<std::string> names;
+    for (const SearchBackend backend : search_backends()) {
+        names.push_back(backend_name(backend));
+    }
+    return names;
+}
 
 // Peak resident memory of this process image. VmHWM from /proc is reset by exec; getrusage's
 // ru_maxrss is not (it would report a large parent's memory after fork + exec), so it is only
@@ -70,16 +56,51 @@ double peak_rss_mb() {
 
 } // namespace
 
-int run_bench(const std::vector<std::string>& args) {
-    Arguments arguments("bench", args);
+// The text of 'tricell bench --help', for the row of dispatch.cpp's table.
+std::string bench_help() {
+    std::vector<std::string> backends = backend_names();
+    backends.front() += " (default)";
+    return R"(usage: tricell bench FILE --cutoff R [--half] [--quantities ijSdD] [--repeat K]
+                     [--threads T] [--backend B] [--max-pairs N]
+                     [--input-format cif|xyz|poscar]
+       tricell bench --list-backends
+
+Times tricell's neighbour list of FILE: one warm-up call, then K timed calls (default 10) into
+a reused list. Prints pairs, median_s, min_s, pairs_per_s, list_mb (the stored arrays),
+base_rss_mb (resident memory after reading FILE, before any search), peak_rss_mb (peak
+resident memory of the whole process), the backend that ran and the cells it stored, one
+"key value" per line.
+
+Options:
+  --cutoff R          cutoff, R > 0 (required)
+  --half              half list (each pair once)
+  --quantities Q      what to store besides i and j: any of S (shifts), d (distances),
+                      D (vectors); default "ijSd"
+  --repeat K          timed calls, K >= 1 (default 10)
+  --threads T         threads, T >= 0, 0 = all hardware threads (default 1)
+  --backend B         )" +
+           wrap(choices(backends), 22, 22) + R"(
+  --list-backends     print the names --backend takes, one per line, and nothing else
+  --max-pairs N       refuse lists of more than N pairs before allocating them (default
+                      500000000; 0 = no limit)
+  --input-format F    cif, xyz or poscar, instead of the guess from the file name
+  -h, --help          this help
+)";
+}
+
+int run_bench(Arguments& arguments) {
     std::string file;
     bool have_cutoff = false;
     long repeat = 10;
     io::ReadOptions read_options;
     NeighborOptions options;
     while (arguments.next()) {
-        if (arguments.flag("--help") || arguments.flag("-h")) {
-            std::fputs(help, stdout);
+        if (arguments.printed_help()) {
+            return 0;
+        } else if (arguments.flag("--list-backends")) {
+            for (const std::string& name : backend_names()) {
+                std::printf("%s\n", name.c_str());
+            }
             return 0;
         } else if (arguments.option("--cutoff")) {
             options.cutoff = arguments.real();

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <utility>
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -14,8 +15,8 @@
 
 namespace tricell::cli {
 
-Arguments::Arguments(std::string command, std::vector<std::string> args)
-    : command_(std::move(command)), args_(std::move(args)) {}
+Arguments::Arguments(const Command& command, std::vector<std::string> args)
+    : command_(command), args_(std::move(args)) {}
 
 bool Arguments::next() {
     if (started_) {
@@ -27,6 +28,14 @@ bool Arguments::next() {
         ++index_;
     }
     return index_ < args_.size();
+}
+
+bool Arguments::printed_help() {
+    if (flag("--help") || flag("-h")) {
+        std::fputs(command_.help().c_str(), stdout);
+        return true;
+    }
+    return false;
 }
 
 bool Arguments::flag(const char* name) {
@@ -99,7 +108,8 @@ void Arguments::unknown() const {
 }
 
 void Arguments::fail(const std::string& message) const {
-    throw UsageError(command_ + ": " + message + " (see tricell " + command_ + " --help)");
+    const std::string name = command_.name;
+    throw UsageError(name + ": " + message + " (see tricell " + name + " --help)");
 }
 
 io::Format input_format(const Arguments& arguments, const std::string& name) {
@@ -108,6 +118,39 @@ io::Format input_format(const Arguments& arguments, const std::string& name) {
     } catch (const Error& e) {
         arguments.fail(std::string("--input-format: ") + e.what());
     }
+}
+
+std::string choices(const std::vector<std::string>& items) {
+    std::string text;
+    for (std::size_t k = 0; k < items.size(); ++k) {
+        text += k == 0 ? "" : k + 1 == items.size() ? " or " : ", ";
+        text += items[k];
+    }
+    return text;
+}
+
+std::string wrap(const std::string& text, std::size_t first, std::size_t indent) {
+    std::string out;
+    std::size_t column = first;
+    std::size_t at = 0;
+    while (at < text.size()) {
+        std::size_t end = text.find(' ', at);
+        if (end == std::string::npos) {
+            end = text.size();
+        }
+        const std::size_t length = end - at;
+        if (!out.empty() && column + 1 + length > text_width) {
+            out += "\n" + std::string(indent, ' ');
+            column = indent;
+        } else if (!out.empty()) {
+            out += ' ';
+            ++column;
+        }
+        out.append(text, at, length);
+        column += length;
+        at = end + 1;
+    }
+    return out;
 }
 
 std::string exact(double value) {

@@ -17,14 +17,37 @@ class UsageError : public std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
+class Arguments;
+
+/// One line of the usage text (tricell --help): "NAME ARGS" and what it does, in one sentence
+/// that the usage text wraps.
+struct UsageLine {
+    const char* args;    // "FILE --cutoff R"
+    const char* summary; // "all pairs closer than R, with image shifts and vectors"
+};
+
+/// A subcommand: a row of the table in dispatch.cpp, from which the usage text, the dispatch
+/// and the "unknown command" error come.
+struct Command {
+    const char* name;                 // "neighbors"
+    const char* alias;                // another spelling run() accepts ("neighbours"), or nullptr
+    std::vector<UsageLine> usage;     // its lines in the usage text, at least one
+    std::string (*help)();            // the text of 'tricell NAME --help'
+    int (*run)(Arguments& arguments); // the handler
+};
+
 /// Walks the arguments of a subcommand. Options take their value as the next argument or after
 /// '=' ("--cutoff 3" or "--cutoff=3"); "--" ends the options.
 class Arguments {
   public:
-    Arguments(std::string command, std::vector<std::string> args);
+    /// The arguments of `command` (its name starts every failure; its help is printed_help()'s).
+    Arguments(const Command& command, std::vector<std::string> args);
 
     /// Moves to the next argument; false at the end.
     bool next();
+    /// The current argument is --help or -h: prints the command's help to standard output and
+    /// returns true (the handler then returns 0).
+    bool printed_help();
     /// The current argument is the flag `name` ("--half").
     bool flag(const char* name);
     /// The current argument is the option `name`; its value is then value().
@@ -45,7 +68,7 @@ class Arguments {
     [[noreturn]] void fail(const std::string& message) const;
 
   private:
-    std::string command_;
+    const Command& command_;
     std::vector<std::string> args_;
     std::size_t index_ = 0;
     bool started_ = false;
@@ -75,6 +98,15 @@ bool take_quiet(Arguments& arguments, bool& quiet);
 
 /// UsageError "missing FILE" when no FILE was given.
 void require_file(const Arguments& arguments, const std::string& file);
+
+/// "a, b or c" (for lists of choices in messages and help texts).
+std::string choices(const std::vector<std::string>& items);
+/// Width of the help and usage texts that wrap().
+constexpr std::size_t text_width = 96;
+/// `text` broken into lines at spaces so that no line passes text_width, the first line taken
+/// to start at column `first` and every further one indented by `indent` spaces; no final
+/// newline.
+std::string wrap(const std::string& text, std::size_t first, std::size_t indent);
 
 /// The shortest text that reads back as the same double (write_real in text.hpp).
 std::string exact(double value);
@@ -107,11 +139,5 @@ class Output {
 /// The whole command: args as after the program name ("neighbors", "x.cif", "--cutoff", "3").
 /// Prints errors as one line on stderr and returns the exit status (see dispatch.cpp).
 int run(const std::vector<std::string>& args);
-
-int run_neighbors(const std::vector<std::string>& args);
-int run_info(const std::vector<std::string>& args);
-int run_coordination(const std::vector<std::string>& args);
-int run_bench(const std::vector<std::string>& args);
-int run_rdf(const std::vector<std::string>& args);
 
 } // namespace tricell::cli

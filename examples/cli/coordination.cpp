@@ -13,10 +13,9 @@
 
 namespace tricell::cli {
 
-namespace {
-
-const char* const help =
-    R"(usage: tricell coordination FILE (--cutoff R | --bond A-B=R ...) [--summary]
+// The text of 'tricell coordination --help', for the row of dispatch.cpp's table.
+std::string coordination_help() {
+    return R"(usage: tricell coordination FILE (--cutoff R | --bond A-B=R ...) [--summary]
                             [--plot PATH.svg|PATH.png] [--max-pairs N]
                             [--input-format cif|xyz|poscar]
 
@@ -46,6 +45,9 @@ Options:
   --input-format F    cif, xyz or poscar, instead of the guess from the file name
   -h, --help          this help
 )";
+}
+
+namespace {
 
 io::BondCutoff parse_bond(const Arguments& arguments, const std::string& text) {
     const std::size_t equals = text.find('=');
@@ -132,8 +134,7 @@ Plot histogram_plot(const std::string& file, const std::vector<ElementSummary>& 
 
 } // namespace
 
-int run_coordination(const std::vector<std::string>& args) {
-    Arguments arguments("coordination", args);
+int run_coordination(Arguments& arguments) {
     std::string file;
     io::ReadOptions read_options;
     io::CoordinationOptions options;
@@ -141,8 +142,7 @@ int run_coordination(const std::vector<std::string>& args) {
     bool summary = false;
     std::string plot_path;
     while (arguments.next()) {
-        if (arguments.flag("--help") || arguments.flag("-h")) {
-            std::fputs(help, stdout);
+        if (arguments.printed_help()) {
             return 0;
         }
         if (arguments.option("--cutoff")) {

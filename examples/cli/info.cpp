@@ -13,9 +13,9 @@
 
 namespace tricell::cli {
 
-namespace {
-
-const char* const help = R"(usage: tricell info FILE [--symprec X] [--input-format cif|xyz|poscar]
+// The text of 'tricell info --help', for the row of dispatch.cpp's table.
+std::string info_help() {
+    return R"(usage: tricell info FILE [--symprec X] [--input-format cif|xyz|poscar]
 
 Prints one 'key: value' line each for: the file and its format; the formula (Hill order, cell
 contents weighted by occupancy); the number of atoms (sites); the cell parameters a, b, c,
@@ -29,6 +29,9 @@ Options:
   --input-format F    cif, xyz or poscar, instead of the guess from the file name
   -h, --help          this help
 )";
+}
+
+namespace {
 
 std::string parameters(const Box& box) {
     const LatticeParameters p = box.parameters();
@@ -44,14 +47,12 @@ std::string triple(const Eigen::Vector3d& v) {
 
 } // namespace
 
-int run_info(const std::vector<std::string>& args) {
-    Arguments arguments("info", args);
+int run_info(Arguments& arguments) {
     std::string file;
     double symprec = 1e-3;
     io::ReadOptions read_options;
     while (arguments.next()) {
-        if (arguments.flag("--help") || arguments.flag("-h")) {
-            std::fputs(help, stdout);
+        if (arguments.printed_help()) {
             return 0;
         }
         if (arguments.option("--symprec")) {

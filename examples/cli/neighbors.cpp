@@ -14,10 +14,9 @@
 
 namespace tricell::cli {
 
-namespace {
-
-const char* const help =
-    R"(usage: tricell neighbors FILE --cutoff R [--half] [--sorted] [--format tsv|csv|json]
+// The text of 'tricell neighbors --help', for the row of dispatch.cpp's table.
+std::string neighbors_help() {
+    return R"(usage: tricell neighbors FILE --cutoff R [--half] [--sorted] [--format tsv|csv|json]
                          [--output PATH] [--max-pairs N] [--threads T] [--quiet]
                          [--input-format cif|xyz|poscar]
        tricell neighbors FILE --nearest K [--format tsv|csv|json] [--output PATH]
@@ -57,11 +56,9 @@ per column (S and D as arrays of triples). With --nearest the columns are i j Sa
 rows per atom, atom by atom) and json has "k" instead of "cutoff" and "half". Reals are written in the shortest form that reads
 back as the same double (at most 17 significant digits).
 )";
+}
 
-} // namespace
-
-int run_neighbors(const std::vector<std::string>& args) {
-    Arguments arguments("neighbors", args);
+int run_neighbors(Arguments& arguments) {
     std::string file;
     std::string output;
     bool have_cutoff = false;
@@ -74,8 +71,7 @@ int run_neighbors(const std::vector<std::string>& args) {
     options.quantities.distances = true;
     options.quantities.vectors = true;
     while (arguments.next()) {
-        if (arguments.flag("--help") || arguments.flag("-h")) {
-            std::fputs(help, stdout);
+        if (arguments.printed_help()) {
             return 0;
         }
         if (arguments.option("--cutoff")) {

@@ -3,6 +3,7 @@
 // by frame with io::FrameReader), as a table and optionally a plot.
 #include <cstdio>
 #include <map>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -20,10 +21,9 @@
 
 namespace tricell::cli {
 
-namespace {
-
-const char* const help =
-    R"(usage: tricell rdf FILE --rmax R --bins N [--pair A-B ...] [--plot PATH.svg|PATH.png]
+// The text of 'tricell rdf --help', for the row of dispatch.cpp's table.
+std::string rdf_help() {
+    return R"(usage: tricell rdf FILE --rmax R --bins N [--pair A-B ...] [--plot PATH.svg|PATH.png]
                    [--format tsv|csv|json] [--output PATH] [--threads T] [--max-pairs N]
                    [--quiet] [--input-format cif|xyz|poscar]
 
@@ -60,6 +60,9 @@ line 'r,g,n,...' and commas; json prints one object {"file", "frames", "rmax", "
 "g", "n", "pairs"} where "pairs" holds {"a", "b", "g", "n"} for each --pair. Reals are the
 shortest text that reads back as the same double.
 )";
+}
+
+namespace {
 
 struct PairName {
     std::string a, b;
@@ -208,8 +211,7 @@ Plot rdf_plot(const std::string& file, const std::vector<Column>& columns, std::
 
 } // namespace
 
-int run_rdf(const std::vector<std::string>& args) {
-    Arguments arguments("rdf", args);
+int run_rdf(Arguments& arguments) {
     std::string file;
     std::string output;
     std::string plot_path;
@@ -222,8 +224,7 @@ int run_rdf(const std::vector<std::string>& args) {
     io::ReadOptions read_options;
     RdfOptions options;
     while (arguments.next()) {
-        if (arguments.flag("--help") || arguments.flag("-h")) {
-            std::fputs(help, stdout);
+        if (arguments.printed_help()) {
             return 0;
         }
         if (arguments.option("--rmax")) {
@@ -252,7 +253,15 @@ int run_rdf(const std::vector<std::string>& args) {
     if (!have_bins) {
         arguments.fail("missing --bins N");
     }
-    Rdf rdf(options); // validates rmax before any file is read
+    // The command's own check of --rmax, in its words; Rdf checks the rest before any file is
+    // read (--bins and --threads are already in range).
+    if (!(options.rmax > 0)) {
+        std::ostringstream got;
+        got.precision(12);
+        got << options.rmax;
+        throw InvalidArgument("--rmax must be finite and > 0 (got " + got.str() + ")");
+    }
+    Rdf rdf(options);
 
     io::FrameReader reader(file, read_options);
     SpeciesNumbers numbers;
@@ -266,6 +275,8 @@ int run_rdf(const std::vector<std::string>& args) {
             rdf.add_frame(frame.box, frame.positions, numbers.of(frame.species));
         } catch (const GeometryError& e) {
             throw GeometryError(where + e.what());
+        } catch (const PairLimitError& e) {
+            throw PairLimitError(where + e.subject(), e.pairs(), e.limit());
         } catch (const InvalidArgument& e) {
             throw InvalidArgument(where + e.what());
         }

@@ -23,6 +23,21 @@ void set_message(const char* text) noexcept {
     message[length] = '\0';
 }
 
+namespace {
+// A refused pair limit in C terms: the field a C caller raises (tricell_verlet_options has it
+// too, in its member neighbors). Composing the text allocates; should that fail, the C++ text
+// is recorded instead.
+void set_pair_limit_message(const PairLimitError& e) noexcept {
+    try {
+        set_message(e.message_for("max_pairs = " + std::to_string(e.limit()),
+                                  "tricell_neighbor_options.max_pairs")
+                        .c_str());
+    } catch (...) {
+        set_message(e.what());
+    }
+}
+} // namespace
+
 void require_pointer(const void* p, const char* function, const char* name) {
     if (p == nullptr) {
         detail::fail<InvalidArgument>(function, ": ", name, " must not be NULL");
@@ -42,6 +57,9 @@ tricell_status current_exception_status() noexcept {
     } catch (const GeometryError& e) {
         set_message(e.what());
         return TRICELL_ERROR_GEOMETRY;
+    } catch (const PairLimitError& e) {
+        set_pair_limit_message(e);
+        return TRICELL_ERROR_INVALID_ARGUMENT;
     } catch (const InvalidArgument& e) {
         set_message(e.what());
         return TRICELL_ERROR_INVALID_ARGUMENT;

@@ -1,9 +1,15 @@
 // The native module tricell._tricell: registers the bindings and translates tricell's
 // exceptions. A malformed or unreadable file (tricell::ParseError) becomes OSError, any other
-// bad value (InvalidArgument, GeometryError) ValueError, each with the C++ message unchanged.
+// bad value (InvalidArgument, GeometryError) ValueError, each with the C++ message unchanged,
+// except that a refused pair limit (PairLimitError) names the keyword argument max_pairs.
+#include <string>
+#include <vector>
+
 #include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
 
 #include <tricell/error.hpp>
+#include <tricell/neighbor_list.hpp>
 
 namespace tricell::python {
 
@@ -25,10 +31,25 @@ PYBIND11_MODULE(_tricell, m) {
             }
         } catch (const tricell::ParseError& e) {
             PyErr_SetString(PyExc_OSError, e.what());
+        } catch (const tricell::PairLimitError& e) {
+            // The limit as a Python caller sets it: the keyword argument max_pairs.
+            const std::string text =
+                e.message_for("max_pairs = " + std::to_string(e.limit()), "max_pairs");
+            PyErr_SetString(PyExc_ValueError, text.c_str());
         } catch (const tricell::Error& e) {
             PyErr_SetString(PyExc_ValueError, e.what());
         }
     });
+    m.def(
+        "backends",
+        [] {
+            std::vector<std::string> names;
+            for (const tricell::SearchBackend backend : tricell::search_backends()) {
+                names.push_back(tricell::backend_name(backend));
+            }
+            return names;
+        },
+        "The names backend= takes, \"auto\" first, from the library's table of backends.");
     tricell::python::bind_neighbors(m);
     tricell::python::bind_read(m);
     tricell::python::bind_analysis(m);

@@ -43,7 +43,7 @@ class PyNeighborList {
     // cutoff: a float (one cutoff), a dict {(species a, species b): cutoff} (a per-species-pair
     // table; compute() then needs species=) or None (compute() then needs radii=).
     PyNeighborList(const py::object& cutoff, bool full, bool sorted, int threads,
-                   const std::string& backend) {
+                   const std::string& backend, std::size_t max_pairs) {
         if (py::isinstance<py::dict>(cutoff)) {
             for (const auto& entry : cutoff.cast<py::dict>()) {
                 try {
@@ -74,6 +74,7 @@ class PyNeighborList {
         options_.sorted = sorted;
         options_.threads = threads;
         options_.backend = parse_backend(backend);
+        options_.max_pairs = max_pairs;
         if (!per_atom_radii_) {
             options_.validate();
         }
@@ -207,8 +208,9 @@ class PyNeighborList {
 
 class PyVerletList {
   public:
-    PyVerletList(double cutoff, double skin, bool full, int threads) {
+    PyVerletList(double cutoff, double skin, bool full, int threads, std::size_t max_pairs) {
         options_.neighbors.cutoff = cutoff;
+        options_.neighbors.max_pairs = max_pairs;
         options_.skin = skin;
         options_.neighbors.half = !full;
         options_.neighbors.threads = threads;
@@ -242,13 +244,26 @@ class PyVerletList {
     std::mutex mutex_;
 };
 
+// '"auto", "dense", ...': the names backend= takes, from the library's table of backends.
+std::string quoted_backends() {
+    std::string text;
+    for (const SearchBackend backend : search_backends()) {
+        text += std::string(text.empty() ? "" : ", ") + "\"" + backend_name(backend) + "\"";
+    }
+    return text;
+}
+
 } // namespace
 
 void bind_neighbors(py::module_& m) {
-    py::class_<PyNeighborList>(m, "NeighborList", R"doc(
+    const std::size_t default_max_pairs = NeighborOptions().max_pairs;
+    const std::size_t verlet_max_pairs = VerletOptions().neighbors.max_pairs;
+    // The docstrings name the defaults and backends of the library; pybind11 copies them.
+    const std::string doc = R"doc(
 Periodic neighbour list in a triclinic box.
 
-NeighborList(cutoff, full=True, sorted=False, threads=1, backend="auto")
+NeighborList(cutoff, full=True, sorted=False, threads=1, backend="auto", max_pairs=)doc" +
+                            std::to_string(default_max_pairs) + R"doc()
 
 Pairs (i, j, S) with |D| < cutoff, D = points[j] - points[i] + S @ box, except (i, i, 0).
 cutoff may also be a dict {(a, b): cutoff} of integer species pairs (symmetric; a pair of
@@ -256,11 +271,15 @@ species missing from it never counts; compute() then takes species=, one per poi
 for per-atom radii (compute() then takes radii=; a pair counts when d < r_i + r_j).
 full=False keeps each pair once (i < j, or i == j with S lexicographically positive).
 sorted=True orders pairs by i, then j, then S. threads=0 uses every core; the result is
-identical for any thread count. backend ("auto", "dense", "linked", "hash", "octree", "direct") changes
-only the speed.)doc")
-        .def(py::init<const py::object&, bool, bool, int, const std::string&>(), py::arg("cutoff"),
-             py::arg("full") = true, py::arg("sorted") = false, py::arg("threads") = 1,
-             py::arg("backend") = "auto")
+identical for any thread count. backend ()doc" +
+                            quoted_backends() + R"doc() changes only the speed.
+max_pairs refuses a list of more pairs (a batch: in total) before it is allocated, from an
+estimate, or as soon as the stored pairs pass it; 0 = no limit.)doc";
+    py::class_<PyNeighborList>(m, "NeighborList", doc.c_str())
+        .def(py::init<const py::object&, bool, bool, int, const std::string&, std::size_t>(),
+             py::arg("cutoff"), py::arg("full") = true, py::arg("sorted") = false,
+             py::arg("threads") = 1, py::arg("backend") = "auto",
+             py::arg("max_pairs") = default_max_pairs)
         .def("compute", &PyNeighborList::compute, py::arg("points"), py::arg("box"),
              py::arg("periodic") = true, py::arg("quantities") = "ijSd", py::arg("copy") = true,
              py::arg("radii") = py::none(), py::arg("species") = py::none(),
@@ -285,13 +304,17 @@ own structure. Each structure gets exactly the list compute() gives it alone.)do
         .def_property_readonly("sorted", &PyNeighborList::sorted)
         .def_property_readonly("threads", &PyNeighborList::threads);
 
-    py::class_<PyVerletList>(m, "VerletList", R"doc(
+    const std::string verlet_doc = R"doc(
 Verlet list: candidates within cutoff + skin, rebuilt only when some atom moved far enough
 that a pair could be missed (see include/tricell/verlet.hpp for the rule).
 
-VerletList(cutoff, skin, full=True, threads=1))doc")
-        .def(py::init<double, double, bool, int>(), py::arg("cutoff"), py::arg("skin"),
-             py::arg("full") = true, py::arg("threads") = 1)
+VerletList(cutoff, skin, full=True, threads=1, max_pairs=)doc" +
+                                   std::to_string(verlet_max_pairs) + R"doc(); max_pairs bounds
+the candidates within cutoff + skin as NeighborList's bounds its pairs (0 = no limit).)doc";
+    py::class_<PyVerletList>(m, "VerletList", verlet_doc.c_str())
+        .def(py::init<double, double, bool, int, std::size_t>(), py::arg("cutoff"), py::arg("skin"),
+             py::arg("full") = true, py::arg("threads") = 1,
+             py::arg("max_pairs") = verlet_max_pairs)
         .def("update", &PyVerletList::update, py::arg("points"), py::arg("box"),
              py::arg("periodic") = true, py::arg("quantities") = "ijSd",
              R"doc(

@@ -127,13 +127,9 @@ def test_threads_give_the_identical_list():
 def test_every_backend_gives_the_same_list(seed):
     cell, positions, pbc, cutoff, _ = random_system(seed, atoms=60)
     expected = tricell.NeighborList(cutoff, sorted=True).compute(positions, cell, pbc, "ijSdD")
-    for backend in ("dense", "linked", "hash", "octree"):
+    for backend in tricell._tricell.backends():
         nl = tricell.NeighborList(cutoff, sorted=True, backend=backend)
-        try:
-            got = nl.compute(positions, cell, pbc, "ijSdD")
-        except ValueError as error:  # a backend announced but not in the library yet
-            assert "not built yet" in str(error), str(error)
-            continue
+        got = nl.compute(positions, cell, pbc, "ijSdD")
         for g, e in zip(got, expected):
             np.testing.assert_array_equal(g, e, err_msg=f"seed {seed}, {backend}")
 
@@ -207,6 +203,40 @@ def test_errors_carry_the_library_message():
         nl.compute(x, [[1, 0, 0], [0, 1, 0], [0, 0, np.nan]])
     with pytest.raises(ValueError):
         tricell.VerletList(1.0, -0.5)
+
+
+def test_backends_come_from_the_library_table():
+    names = tricell._tricell.backends()
+    assert names[0] == "auto"
+    assert {"dense", "linked", "hash", "octree", "direct"} <= set(names)
+    listed = ", ".join('"%s"' % name for name in names)
+    assert "backend (" + listed + ") changes only the speed" in tricell.NeighborList.__doc__
+
+
+def test_a_refused_pair_limit_names_the_keyword_max_pairs():
+    cell, positions, pbc, cutoff, _ = random_system(5, atoms=40, pbc=(True, True, True))
+    pairs = len(tricell.NeighborList(cutoff).compute(positions, cell, pbc, "i"))
+    assert pairs > 10
+    tail = ", more than max_pairs = 10; raise max_pairs to allow it"
+    with pytest.raises(ValueError) as refused:
+        tricell.NeighborList(cutoff, max_pairs=10).compute(positions, cell, pbc)
+    assert str(refused.value).endswith(tail), str(refused.value)
+    assert "NeighborOptions" not in str(refused.value)
+    with pytest.raises(ValueError) as refused:
+        tricell.NeighborList(cutoff, max_pairs=10).compute_batch([positions], [cell], pbc)
+    assert str(refused.value).endswith(tail), str(refused.value)
+    with pytest.raises(ValueError) as refused:
+        tricell.VerletList(cutoff, 0.5, max_pairs=10).update(positions, cell, pbc)
+    assert str(refused.value).endswith(tail), str(refused.value)
+    # The default limit refuses an absurd cutoff from the estimate, before any search.
+    with pytest.raises(ValueError, match=r"more than max_pairs = 500000000; raise max_pairs"):
+        tricell.NeighborList(1000.0).compute(positions, cell, pbc)
+    # Raising the limit (well above the estimate), or 0 (none), lets the same list through.
+    for limit in (100 * pairs, 0):
+        found = tricell.NeighborList(cutoff, max_pairs=limit).compute(positions, cell, pbc, "i")
+        assert len(found) == pairs
+    found = tricell.VerletList(cutoff, 0.5, max_pairs=0).update(positions, cell, pbc, "i")
+    assert len(found) == pairs
 
 
 @pytest.mark.parametrize("seed", range(16))

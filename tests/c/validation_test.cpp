@@ -264,20 +264,33 @@ TEST(CApiValidation, Neighbors_EveryArgumentLeavesTheListEmpty) {
         check(call_with(o, xyz(two_atoms), 2), TRICELL_ERROR_INVALID_ARGUMENT,
               cxx([&](auto& c) { c.threads = threads; }, two_atoms));
     }
+    // A refused pair limit names the C field to raise; what is too large reads as in C++.
     {
         tricell_neighbor_options o = options_with_cutoff(3.9);
         o.max_pairs = 1;
         const std::vector<Eigen::Vector3d> many(50, Eigen::Vector3d(1, 1, 1));
-        const std::string message = cxx(
-            [&](auto& c) {
-                c.cutoff = 3.9;
-                c.max_pairs = 1;
-            },
-            many);
-        ASSERT_NE(message.find("max_pairs"), std::string::npos);
-        check(call_with(o, xyz(many), many.size()), TRICELL_ERROR_INVALID_ARGUMENT, message);
+        tricell::NeighborOptions c;
+        c.cutoff = 3.9;
+        c.max_pairs = 1;
+        std::string subject;
+        try {
+            tricell::compute_neighbors(cxx_box, many, c);
+        } catch (const tricell::PairLimitError& e) {
+            subject = e.subject();
+        }
+        ASSERT_FALSE(subject.empty());
+        check(
+            call_with(o, xyz(many), many.size()), TRICELL_ERROR_INVALID_ARGUMENT,
+            subject +
+                ", more than max_pairs = 1; raise tricell_neighbor_options.max_pairs to allow it");
     }
-    // Backend and variable cutoffs.
+    // Backend and variable cutoffs. Every backend of the library's table is a valid int.
+    for (const tricell::SearchBackend backend : tricell::search_backends()) {
+        tricell_neighbor_options o = good;
+        o.backend = int(backend);
+        EXPECT_EQ(call_with(o, xyz(two_atoms), 2)(), TRICELL_OK)
+            << tricell::backend_name(backend) << ": " << tricell_last_error();
+    }
     {
         tricell_neighbor_options o = good;
         o.backend = 9;
