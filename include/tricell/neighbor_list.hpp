@@ -9,9 +9,9 @@
 // direct image enumeration) only bins the atoms and enumerates candidate (atom range, atom
 // range, image shift) triples; the shared distance test, pair storage, half-list orientation,
 // variable cutoffs, threads and their ordered output, sorting and the map of shifts back to the
-// caller's lattice vectors live once, in lib/search/. The image shift reported for a pair is relative to the caller's own positions,
-// S = (cell shift) + (image of i) - (image of j), so D = x_j - x_i + H S holds for the positions
-// as given, even far outside the box.
+// caller's lattice vectors live once, in lib/search/. The image shift reported for a pair is
+// relative to the caller's own positions, S = (cell shift) + (image of i) - (image of j), so D =
+// x_j - x_i + H S holds for the positions as given, even far outside the box.
 //
 // Full lists report every ordered (i, j, S) with |D| < cutoff except (i, i, 0). Half lists report
 // each pair once, oriented canonically: i < j, or for i == j (an atom and its own image) S

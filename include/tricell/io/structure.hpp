@@ -1,8 +1,8 @@
 // Crystal structures read from files: CIF, VASP POSCAR/CONTCAR and (extended) XYZ.
 //
 // Every reader returns a Structure: a Box, and per atom its element symbol, Cartesian position,
-// occupancy and label. The format is chosen from the file name (docs/contract.md, command line) unless
-// ReadOptions::format says otherwise. How each format is read:
+// occupancy and label. The format is chosen from the file name (docs/contract.md, command line)
+// unless ReadOptions::format says otherwise. How each format is read:
 //
 // - CIF: the first data block with _atom_site_fract_x. Cell from _cell_length_* and
 //   _cell_angle_* (a along x, b in the xy plane). Symmetry operators from the
