@@ -34,7 +34,7 @@
 #include <vector>
 
 #include <tricell/cell_list.hpp>
-#include <tricell/detail/distance_kernel.hpp>
+#include "search/distance_kernel.hpp"
 #include <tricell/grid.hpp>
 #include <tricell/io/structure.hpp>
 #include <tricell/neighbor_list.hpp>

@@ -1,6 +1,6 @@
 #include "tricell/verlet.hpp"
 
-#include "tricell/detail/distance_kernel.hpp"
+#include "search/distance_kernel.hpp"
 
 #include <algorithm>
 #include <cmath>

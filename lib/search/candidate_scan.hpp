@@ -21,7 +21,7 @@
 #include <Eigen/Core>
 
 #include "search/pair_sink.hpp"
-#include "tricell/detail/distance_kernel.hpp"
+#include "search/distance_kernel.hpp"
 #include "tricell/neighbor_list.hpp"
 
 namespace tricell::detail {

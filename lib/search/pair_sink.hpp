@@ -13,7 +13,7 @@
 
 #include <Eigen/Core>
 
-#include "tricell/detail/distance_kernel.hpp"
+#include "search/distance_kernel.hpp"
 #include "tricell/error.hpp"
 #include "tricell/neighbor_list.hpp"
 

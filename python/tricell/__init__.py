@@ -18,10 +18,10 @@ from typing import List, NamedTuple, Tuple
 
 import numpy as np
 
-from ._tricell import NeighborList, Rdf, VerletList, _read, nearest_neighbors
+from ._tricell import NeighborList, Rdf, VerletList, _read, backends, nearest_neighbors
 
 __all__ = [
-    "NeighborList", "VerletList", "Rdf", "nearest_neighbors", "Structure", "read",
+    "NeighborList", "VerletList", "Rdf", "nearest_neighbors", "Structure", "read", "backends",
 ]
 
 

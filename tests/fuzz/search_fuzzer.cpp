@@ -193,11 +193,6 @@ double cutoff(FuzzedDataProvider& in, const Box& box, const std::vector<Eigen::V
     }
 }
 
-// Every input runs through every backend, automatic included.
-constexpr tricell::SearchBackend backends[] = {
-    tricell::SearchBackend::automatic, tricell::SearchBackend::dense,
-    tricell::SearchBackend::linked,    tricell::SearchBackend::hash,
-    tricell::SearchBackend::octree,    tricell::SearchBackend::direct};
 
 } // namespace
 
@@ -269,7 +264,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
 
     int rejected = -1; // unknown until the first engine ran
     std::string first_message;
-    for (const tricell::SearchBackend backend : backends) {
+    // Every input runs through every backend of the registry, automatic included.
+    for (const tricell::SearchBackend backend : tricell::search_backends()) {
         options.backend = backend;
         const char* engine = tricell::backend_name(backend);
         NeighborList list;

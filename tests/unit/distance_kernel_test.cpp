@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "tricell/detail/distance_kernel.hpp"
+#include "search/distance_kernel.hpp"
 
 using tricell::detail::kernel_block;
 

@@ -1,4 +1,4 @@
-#include "tricell/detail/distance_kernel.hpp"
+#include "search/distance_kernel.hpp"
 
 #include <cmath>
 
