@@ -33,8 +33,8 @@
 #include <string>
 #include <vector>
 
-#include <tricell/cell_list.hpp>
 #include "search/distance_kernel.hpp"
+#include <tricell/cell_list.hpp>
 #include <tricell/grid.hpp>
 #include <tricell/io/structure.hpp>
 #include <tricell/neighbor_list.hpp>

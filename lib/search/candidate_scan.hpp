@@ -20,8 +20,8 @@
 
 #include <Eigen/Core>
 
-#include "search/pair_sink.hpp"
 #include "search/distance_kernel.hpp"
+#include "search/pair_sink.hpp"
 #include "tricell/neighbor_list.hpp"
 
 namespace tricell::detail {

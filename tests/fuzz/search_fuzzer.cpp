@@ -193,7 +193,6 @@ double cutoff(FuzzedDataProvider& in, const Box& box, const std::vector<Eigen::V
     }
 }
 
-
 } // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -6,10 +6,10 @@
 
 #include <gtest/gtest.h>
 
+#include "search/distance_kernel.hpp"
 #include "support/brute_force.hpp"
 #include "support/expect_throw_msg.hpp"
 #include "support/random_boxes.hpp"
-#include "search/distance_kernel.hpp"
 #include "tricell/error.hpp"
 #include "tricell/neighbor_list.hpp"
 
