@@ -24,6 +24,7 @@
 #include <limits>
 
 #include "backends/backend.hpp"
+#include "cost_model/cost_model.hpp"
 
 namespace tricell::detail {
 
@@ -74,6 +75,15 @@ class DirectBackend final : public Backend {
                                                       std::ceil(input.search_radius / w) + 1),
                                              input.search_radius, w, k)
                        : 0;
+        }
+        double images = 1;
+        for (int k = 0; k < 3; ++k) {
+            images *= 2.0 * m[k] + 1;
+        }
+        if (images > max_direct_images) {
+            fail<InvalidArgument>("search radius ", input.search_radius, " spans about ", images,
+                                  " periodic images, more than the direct backend enumerates (",
+                                  max_direct_images, "); choose a grid backend");
         }
         // Every image with |T| < reach, S = 0 first, with its bucket of |T|.
         reach_sq_ = reach_ * reach_;
