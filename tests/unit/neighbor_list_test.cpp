@@ -244,6 +244,18 @@ TEST(NeighborList, RejectsNonFinitePositionNamingIt) {
                      tricell::InvalidArgument, "position 17 is not finite");
 }
 
+TEST(NeighborList, DirectBackendRefusesMillionsOfImages) {
+    // Two atoms 1e6 apart along the open axis of a 1 x 1 slab, cutoff 1100: the direct backend's
+    // images would number (2 * 1101 + 1)^2, about 4.9e6, refused before any is listed.
+    const Box slab =
+        Box::from_parameters(1, 1, 1, 90, 90, 90, tricell::Periodicity{{true, true, false}});
+    const std::vector<Eigen::Vector3d> x{{0.5, 0.5, 0}, {0.5, 0.5, 1e6}};
+    NeighborOptions o = with_cutoff(1100);
+    o.backend = SearchBackend::direct;
+    EXPECT_THROW_MSG(tricell::compute_neighbors(slab, x, o), tricell::InvalidArgument,
+                     "more than the direct backend enumerates");
+}
+
 TEST(NeighborList, RejectsPositionTooFarToWrap) {
     const std::vector<Eigen::Vector3d> x{{0, 0, 0}, {1e12, 0, 0}};
     EXPECT_THROW_MSG(tricell::compute_neighbors(cube10, x, with_cutoff(1)),
