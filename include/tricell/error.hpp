@@ -37,7 +37,8 @@ class TRICELL_API InvalidArgument : public Error {
 class TRICELL_API PairLimitError : public InvalidArgument {
   public:
     /// `subject` says what is too large, e.g. "cutoff 3 would give about 1.2e9 pairs for 1000
-    /// atoms (estimated from the density)"; `pairs` is that estimate, or the count reached.
+    /// atoms (estimated from the density)"; `pairs` is that estimate, or for a list refused
+    /// while it was being stored the first count past the limit (limit + 1).
     PairLimitError(std::string subject, double pairs, std::size_t limit);
     const std::string& subject() const noexcept { return subject_; }
     double pairs() const noexcept { return pairs_; }

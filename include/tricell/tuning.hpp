@@ -23,7 +23,7 @@
 
 namespace tricell {
 
-/// Constants of the occupancy work model (lib/cost_model/cost_model.hpp), in units of one
+/// Constants of the occupancy work model (the library's private cost model), in units of one
 /// distance test; benchmarks/backend_bench.cpp measures them.
 struct OccupancyCosts {
     double per_visit = 4; ///< c_visit: per (non-empty cell, stencil cell) visited

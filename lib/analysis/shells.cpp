@@ -75,6 +75,7 @@ ShellNeighborList compute_neighbors(const Box& box, PointsView positions,
             columns.distances.clear(); // not asked for: not worth reordering
         }
         columns.permute(order);
+        // (permute() leaves an empty column empty)
     }
     if (!options.quantities.distances) {
         columns.distances.clear();

@@ -5,12 +5,11 @@
 // then fixed (a running sum under a mutex, by whichever thread reports), and each thread copies
 // its own placed batches to their places, with non-temporal stores (stream_copy.hpp). The result
 // is the concatenation of the batches in unit order, whatever the thread count, with no merge
-// copy of per-thread lists afterwards (that copy was a serial tail of the two-thread search: one
-// thread copied the second half of the list while the other waited) and no second list in
-// memory. A thread does not wait for another when a batch cannot be placed yet: the batch stays
-// in its owner's columns, behind which the owner scans its next batch; usually that is one batch
-// (two threads finishing neighbouring batches at about the same time). Only a thread holding many
-// such batches (a stalled neighbour), or at the end, waits.
+// copy of per-thread lists afterwards (so no serial tail in which one thread copies while the
+// others wait) and no second list in memory. A thread does not wait for another when a batch cannot
+// be placed yet: the batch stays in its owner's columns, behind which the owner scans its next
+// batch; usually that is one batch (two threads finishing neighbouring batches at about the same
+// time). Only a thread holding many such batches (a stalled neighbour), or at the end, waits.
 //
 // ordered_search() is the whole protocol: the threads, their tickets, each thread's queue of
 // scanned batches not yet placed, and the copies.

@@ -142,9 +142,10 @@ double estimated_system_pairs(const Box& box, std::size_t atoms, const Eigen::Ve
         }
     }
     const double sphere = 4.0 / 3.0 * pi * std::pow(cutoff, 3);
-    // 0 when sphere and volume both underflowed: no estimate (the sink still enforces max_pairs
-    // on the real count).
-    const double pairs = expected_pairs(double(atoms), volume, sphere) * (half ? 0.5 : 1.0);
+    // The whole system's n^2 sphere / V, kept in this order (the estimate is reported); NaN when
+    // sphere and volume both underflowed: no estimate (the sink still enforces max_pairs on the
+    // real count).
+    const double pairs = double(atoms) * double(atoms) * sphere / volume * (half ? 0.5 : 1.0);
     return std::isnan(pairs) ? 0 : pairs;
 }
 

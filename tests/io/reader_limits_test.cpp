@@ -1,6 +1,6 @@
 // Resource limits of the readers: a file that claims more atoms than ReadOptions::max_atoms, or
 // more than it can hold, and a CIF whose symmetry expansion would explode, are refused with a
-// message naming the value before the atoms are read (issue: hostile input never crashes).
+// message naming the value before the atoms are read (hostile input never crashes).
 #include <string>
 
 #include <gtest/gtest.h>
