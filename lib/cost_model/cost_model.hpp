@@ -171,21 +171,8 @@ inline bool choose_direct(std::size_t atoms, double min_width, double radius) {
 }
 
 /// The most periodic images the direct backend enumerates (a few hundred MB of images): past
-/// that its candidates (N^2 x images) lose to any grid, and the automatic choice never takes it.
+/// that it refuses the search, naming the radius, rather than allocate gigabytes.
 constexpr double max_direct_images = double(1 << 22);
-
-/// A bound on the images the direct backend enumerates for search radius `radius`: the product
-/// over periodic axes of 2 m + 1 with m = ceil(radius / w) + 1 (w the perpendicular width),
-/// whatever the spread of the atoms.
-inline double direct_image_bound(const Box& frame, double radius) {
-    double images = 1;
-    for (int k = 0; k < 3; ++k) {
-        if (frame.periodic(k)) {
-            images *= 2 * (std::ceil(radius / frame.perpendicular_widths()[k]) + 1) + 1;
-        }
-    }
-    return images;
-}
 
 /// Dense or hash for a grid search: dense when the full-resolution cell count fits the cap.
 inline SearchBackend choose_grid_backend(double full_resolution_cells, double max_cells) {

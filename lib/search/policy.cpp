@@ -64,8 +64,7 @@ SearchBackend automatic_backend(const Box& box, const std::vector<Eigen::Vector3
             min_width = std::min(min_width, box.perpendicular_widths()[k]);
         }
     }
-    if (choose_direct(n, min_width, search_radius) &&
-        direct_image_bound(box, search_radius) <= max_direct_images) {
+    if (choose_direct(n, min_width, search_radius)) {
         return SearchBackend::direct;
     }
     const double h = search_radius / options.cells_per_cutoff;
