@@ -7,7 +7,7 @@
 !> the results are 0-BASED, as everywhere in tricell: atom i is positions(:, i + 1). Results are
 !> pointers into the C list's arrays (no copy), valid until the next compute() or destroy():
 !> i(k), j(k), shifts(:, k), distances(k), vectors(:, k) for pair k = 1 .. npairs, and with
-!> sorted output offsets(0:N), pairs of atom a being offsets(a) + 1 .. offsets(a + 1).
+!> sorted or grouped output offsets(0:N), pairs of atom a being offsets(a) + 1 .. offsets(a + 1).
 module tricell
     use, intrinsic :: iso_c_binding
     implicit none
@@ -38,7 +38,7 @@ module tricell
 
     type, bind(c) :: c_neighbor_options
         real(c_double) :: cutoff
-        integer(c_int) :: half, sorted, shifts, distances, vectors, threads, backend
+        integer(c_int) :: half, sorted, grouped, shifts, distances, vectors, threads, backend
         integer(c_size_t) :: max_pairs
         type(c_ptr) :: radii, species, species_cutoffs
         integer(c_size_t) :: species_cutoff_count
@@ -204,14 +204,15 @@ module tricell
 contains
 
     !> A neighbour list for pairs closer than `cutoff` (strict). Optional: half (each pair once),
-    !> sorted (by i, j, S, with offsets), shifts and distances (stored unless .false.), vectors
+    !> sorted (by i, j, S, with offsets), grouped (by i in the search's order, with offsets),
+    !> shifts and distances (stored unless .false.), vectors
     !> (stored if .true.), threads (default 1, 0 = all cores), backend (TRICELL_BACKEND_*), and a
     !> per-species cutoff table: species_pairs(:, k) = [a, b] with species_cutoffs(k) (then
     !> cutoff is 0 and compute() takes species). Options are checked by compute().
     function new_neighbor_list(cutoff, half, sorted, shifts, distances, vectors, threads, &
-                               backend, species_pairs, species_cutoffs) result(self)
+                               backend, species_pairs, species_cutoffs, grouped) result(self)
         real(c_double), intent(in) :: cutoff
-        logical, intent(in), optional :: half, sorted, shifts, distances, vectors
+        logical, intent(in), optional :: half, sorted, shifts, distances, vectors, grouped
         integer, intent(in), optional :: threads, backend
         integer, intent(in), optional :: species_pairs(:, :)
         real(c_double), intent(in), optional :: species_cutoffs(:)
@@ -223,6 +224,7 @@ contains
         self%options%cutoff = cutoff
         if (present(half)) self%options%half = merge(1, 0, half)
         if (present(sorted)) self%options%sorted = merge(1, 0, sorted)
+        if (present(grouped)) self%options%grouped = merge(1, 0, grouped)
         if (present(shifts)) self%options%shifts = merge(1, 0, shifts)
         if (present(distances)) self%options%distances = merge(1, 0, distances)
         if (present(vectors)) self%options%vectors = merge(1, 0, vectors)

@@ -116,6 +116,8 @@ typedef struct tricell_neighbor_options {
     double cutoff;    /* pairs with d < cutoff; finite and > 0 (0 with radii or species) */
     int half;         /* 1: each pair once (see the conventions) */
     int sorted;       /* 1: sorted by i, then j, then S; fills tricell_pairs.offsets */
+    int grouped;      /* 1: grouped by i in the search's order (one counting pass); fills
+                       * tricell_pairs.offsets. sorted implies it */
     int shifts;       /* store S (default 1) */
     int distances;    /* store d (default 1) */
     int vectors;      /* store D (default 0) */

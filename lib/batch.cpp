@@ -17,8 +17,8 @@ namespace detail {
 
 // One thread's state: a search object and a scratch list reused from structure to structure
 // (and from call to call), the columns its run of structures is appended to (thread 0 appends
-// straight to the output), and per structure of the run its pair count and, when sorted, the
-// per-atom offsets relative to the structure's first pair.
+// straight to the output), and per structure of the run its pair count and, when grouped or sorted,
+// the per-atom offsets relative to the structure's first pair.
 struct BatchWorker {
     NeighborSearch search;
     NeighborList scratch;
@@ -212,7 +212,7 @@ void compute_neighbors_batch(const BatchStructure* structures, std::size_t count
             });
         }
 
-        if (options.sorted) {
+        if (options.with_offsets()) {
             // Per-atom offsets, shifted from each structure's first pair to the shared columns.
             out.columns_.offsets.reserve(out.atom_offsets_[count] + 1);
             for (std::size_t t = 0; t < runs; ++t) {

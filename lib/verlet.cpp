@@ -227,6 +227,7 @@ void VerletList::build(const Box& box, PointsView positions) {
     search_options.quantities.distances = false;
     search_options.quantities.vectors = false;
     search_options.sorted = false;
+    search_options.grouped = false;
     NeighborSearch search;
     search.build(box, positions, search_options); // validates the positions
     search.compute(raw_);

@@ -85,8 +85,8 @@ class TRICELL_API BatchList {
     const PairArray<double>& distances() const { return columns_.distances; }
     /// 3 doubles per pair, empty unless Quantities::vectors.
     const PairArray<double>& vectors() const { return columns_.vectors; }
-    /// With sorted output: the pairs of atom a of structure s are [offsets[k], offsets[k + 1])
-    /// with k = atom_offsets()[s] + a (indices into the shared columns). Empty otherwise.
+    /// With grouped or sorted output: the pairs of atom a of structure s are [offsets[k], offsets[k
+    /// + 1]) with k = atom_offsets()[s] + a (indices into the shared columns). Empty otherwise.
     const std::vector<std::size_t>& offsets() const { return columns_.offsets; }
 
     /// Empties the list, keeping the capacity.

@@ -19,8 +19,8 @@
 // neither does any result.
 //
 // Two ways to consume pairs: compute() stores them struct-of-arrays in a reusable NeighborList
-// (optionally sorted by i, j, S with per-atom offsets), and for_each_pair() calls a function
-// for each pair without storing anything (pairs reach it in blocks of a few hundred).
+// (optionally grouped by i, or sorted by i, j, S, with per-atom offsets), and for_each_pair() calls
+// a function for each pair without storing anything (pairs reach it in blocks of a few hundred).
 #pragma once
 
 #include <array>
@@ -86,6 +86,10 @@ struct TRICELL_API NeighborOptions {
     bool half = false;
     /// Sort by i, then j, then S lexicographically, and fill NeighborList::offsets().
     bool sorted = false;
+    /// Group the pairs by i (CSR) and fill NeighborList::offsets(): atom i's pairs are
+    /// consecutive, in the order the search found them (the same for every thread count, not
+    /// across backends). One counting pass, cheaper than `sorted`, which implies it.
+    bool grouped = false;
     Quantities quantities;
     SearchBackend backend = SearchBackend::automatic;
     /// Target cells per cutoff along each axis (>= 1), grid backends. Never changes the result.
@@ -119,6 +123,8 @@ struct TRICELL_API NeighborOptions {
     void validate() const;
     /// True when radii or species_cutoffs decide which pairs count.
     bool variable_cutoff() const { return !radii.empty() || !species_cutoffs.empty(); }
+    /// True when the list comes grouped by i with per-atom offsets (grouped or sorted).
+    bool with_offsets() const { return grouped || sorted; }
 };
 
 /// What the visitor of for_each_pair() receives. `vector` is D = x_j - x_i + H shift.
@@ -144,7 +150,8 @@ class TRICELL_API NeighborList {
     const PairArray<double>& distances() const { return columns_.distances; }
     /// 3 doubles per pair (Dx, Dy, Dz), empty unless Quantities::vectors.
     const PairArray<double>& vectors() const { return columns_.vectors; }
-    /// With sorted output: pairs of atom i are [offsets[i], offsets[i + 1]). Empty otherwise.
+    /// With grouped or sorted output: pairs of atom i are [offsets[i], offsets[i + 1]). Empty
+    /// otherwise.
     const std::vector<std::size_t>& offsets() const { return columns_.offsets; }
 
     Shift shift(std::size_t k) const { return columns_.shift(k); }

@@ -65,9 +65,9 @@ struct TRICELL_API VerletOptions {
     /// i and j), the backend, threads of the search, max_pairs (a limit on the CANDIDATES of a
     /// build) and max_cells. neighbors.cells_per_cutoff counts cells per LIST radius
     /// r_l = r_c + skin (h = r_l / k, k >= 1; 1 gives h = r_l, r_l / r_c gives h = r_c; 2 by
-    /// default, see SkinCostModel); it never changes the result. neighbors.sorted is ignored
-    /// (update() always groups the pairs by i). Variable cutoffs (radii, species_cutoffs) are
-    /// not supported by the Verlet list.
+    /// default, see SkinCostModel); it never changes the result. neighbors.sorted and
+    /// neighbors.grouped are ignored (update() always groups the pairs by i). Variable cutoffs
+    /// (radii, species_cutoffs) are not supported by the Verlet list.
     NeighborOptions neighbors = default_neighbors();
     /// Delta: candidates are built at r_c + skin. Finite and >= 0 (0 rebuilds whenever
     /// anything moves).

@@ -25,6 +25,7 @@ void for_each_half_pair(const Box& box, PointsView positions, NeighborOptions op
                         Visit&& visit) {
     options.half = true;
     options.sorted = false;
+    options.grouped = false;
     options.max_pairs = 0;
     options.quantities = Quantities{true, true, false};
     NeighborSearch search;

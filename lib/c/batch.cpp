@@ -29,7 +29,7 @@ extern "C" tricell_status tricell_neighbors_batch(const tricell_structure* struc
         // Empty from here on until the new pairs are complete.
         list->list.clear();
         list->stored = Quantities{false, false, false};
-        list->sorted = false;
+        list->with_offsets = false;
         require_pointer(options, "tricell_neighbors_batch", "options");
         if (count > 0) {
             require_pointer(structures, "tricell_neighbors_batch", "structures");
@@ -53,7 +53,7 @@ extern "C" tricell_status tricell_neighbors_batch(const tricell_structure* struc
         }
         compute_neighbors_batch(list->structures, list->options, list->list);
         list->stored = list->options.quantities;
-        list->sorted = list->options.sorted;
+        list->with_offsets = list->options.with_offsets();
     });
 }
 
@@ -62,6 +62,6 @@ extern "C" tricell_status tricell_batch_list_pairs(const tricell_batch_list* lis
     return guarded([&] {
         require_pointer(list, "tricell_batch_list_pairs", "list");
         require_pointer(pairs, "tricell_batch_list_pairs", "pairs");
-        *pairs = to_batch_pairs(list->list, list->stored, list->sorted);
+        *pairs = to_batch_pairs(list->list, list->stored, list->with_offsets);
     });
 }

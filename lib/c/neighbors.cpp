@@ -44,7 +44,7 @@ extern "C" tricell_status tricell_neighbors(tricell_neighbor_search* search, con
         // Empty from here on until the new pairs are complete.
         list->list.clear();
         list->stored = Quantities{false, false, false};
-        list->sorted = false;
+        list->with_offsets = false;
         require_pointer(search, "tricell_neighbors", "search");
         require_pointer(box, "tricell_neighbors", "box");
         require_pointer(options, "tricell_neighbors", "options");
@@ -53,7 +53,7 @@ extern "C" tricell_status tricell_neighbors(tricell_neighbor_search* search, con
         search->search.build(to_box(*box), PointsView(positions, n), cxx_options);
         search->search.compute(list->list);
         list->stored = cxx_options.quantities;
-        list->sorted = cxx_options.sorted;
+        list->with_offsets = cxx_options.with_offsets();
     });
 }
 
@@ -62,6 +62,6 @@ extern "C" tricell_status tricell_neighbor_list_pairs(const tricell_neighbor_lis
     return guarded([&] {
         require_pointer(list, "tricell_neighbor_list_pairs", "list");
         require_pointer(pairs, "tricell_neighbor_list_pairs", "pairs");
-        *pairs = to_pairs(list->list, list->stored, list->sorted);
+        *pairs = to_pairs(list->list, list->stored, list->with_offsets);
     });
 }

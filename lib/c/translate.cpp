@@ -50,6 +50,7 @@ void to_options(const tricell_neighbor_options& options, std::size_t atoms, Neig
     out.cutoff = options.cutoff;
     out.half = require_flag(options.half, "options.half");
     out.sorted = require_flag(options.sorted, "options.sorted");
+    out.grouped = require_flag(options.grouped, "options.grouped");
     out.quantities.shifts = require_flag(options.shifts, "options.shifts");
     out.quantities.distances = require_flag(options.distances, "options.distances");
     out.quantities.vectors = require_flag(options.vectors, "options.vectors");
@@ -89,6 +90,7 @@ tricell_neighbor_options to_c_options(const NeighborOptions& options) {
     out.cutoff = options.cutoff;
     out.half = options.half ? 1 : 0;
     out.sorted = options.sorted ? 1 : 0;
+    out.grouped = options.grouped ? 1 : 0;
     out.shifts = options.quantities.shifts ? 1 : 0;
     out.distances = options.quantities.distances ? 1 : 0;
     out.vectors = options.quantities.vectors ? 1 : 0;

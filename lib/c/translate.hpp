@@ -42,7 +42,7 @@ struct tricell_neighbor_search {
 struct tricell_neighbor_list {
     tricell::NeighborList list;
     tricell::Quantities stored; // what the last tricell_neighbors() asked for
-    bool sorted = false;
+    bool with_offsets = false;  // the last call's list is grouped by i with offsets
 };
 
 struct tricell_batch_list {
@@ -50,5 +50,5 @@ struct tricell_batch_list {
     std::vector<tricell::BatchStructure> structures; // of the last call, kept for their memory
     tricell::NeighborOptions options;                // likewise
     tricell::Quantities stored; // what the last tricell_neighbors_batch() asked for
-    bool sorted = false;
+    bool with_offsets = false;  // the last call's list is grouped by i with offsets
 };

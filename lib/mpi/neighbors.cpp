@@ -58,7 +58,8 @@ void DistributedSearch::build(const Decomposition& decomposition, const Box& box
 
 void DistributedSearch::compute(DistributedPairs& out) const {
     local_.compute(scratch_);
-    detail::map_pairs(scratch_, halo_, options_.half, options_.sorted, options_.quantities, out);
+    detail::map_pairs(scratch_, halo_, options_.half, options_.with_offsets(), options_.quantities,
+                      out);
 }
 
 DistributedPairs compute_neighbors(const Decomposition& decomposition, const Box& box,

@@ -12,6 +12,7 @@ NeighborOptions local_options(const NeighborOptions& caller) {
     NeighborOptions local = caller;
     local.half = true;
     local.sorted = false;
+    local.grouped = false;
     local.quantities = Quantities{false, true, true};
     local.radii.clear(); // per local atom: set by the caller from the halo
     local.species.clear();

@@ -1,6 +1,8 @@
-// The orders a stored list can be asked for. Sorted: by i, then j, then S lexicographically,
-// with per-atom offsets (CSR). It is made by a counting sort on i (one pass over the pairs) and
-// a comparison sort of each atom's own pairs by (j, S), which are few.
+// The orders a stored list can be asked for, both with per-atom offsets (CSR). Grouped: by i,
+// stable, so each atom's pairs keep the order the search found them in; it is one counting sort
+// on i (a histogram, a prefix sum and one scatter of the columns). Sorted: by i, then j, then S
+// lexicographically; the counting sort on i followed by a comparison sort of each atom's own
+// pairs by (j, S), which are few.
 #pragma once
 
 #include <cstddef>
@@ -8,6 +10,9 @@
 #include "tricell/pair_columns.hpp"
 
 namespace tricell::detail {
+
+/// Groups `columns` by i (stable) and fills its offsets for `atoms` atoms.
+void group_pairs(PairColumns& columns, std::size_t atoms);
 
 /// Sorts `columns` (S needed) by i, j, S and fills its offsets for `atoms` atoms.
 void sort_pairs(PairColumns& columns, std::size_t atoms);

@@ -108,7 +108,7 @@ void NeighborSearch::compute(NeighborList& out) const {
     const detail::SearchState& s = *state_;
     PairColumns& columns = out.columns();
     if (!s.backend) {
-        if (s.options.sorted) {
+        if (s.options.with_offsets()) {
             columns.offsets.assign(s.atom_count + 1, 0);
         }
         return;
@@ -160,6 +160,8 @@ void NeighborSearch::compute(NeighborList& out) const {
         }
         if (s.options.sorted) {
             detail::sort_pairs(columns, s.atom_count);
+        } else if (s.options.grouped) {
+            detail::group_pairs(columns, s.atom_count);
         }
         if (!q.shifts) {
             columns.shifts.clear();

@@ -134,6 +134,7 @@ Quantities parse_quantities(const std::string& letters) {
         case 'i':
         case 'j':
         case 'P':
+        case 'o':
             break;
         case 'S':
             q.shifts = true;
@@ -146,7 +147,7 @@ Quantities parse_quantities(const std::string& letters) {
             break;
         default:
             value_error("unknown quantity '" + std::string(1, letter) + "' in '" + letters +
-                        "' (expected letters among i, j, S, d, D, P)");
+                        "' (expected letters among i, j, S, d, D, P, o)");
         }
     }
     if (letters.empty()) {
@@ -189,6 +190,13 @@ py::object columns_of(const List& list, const std::string& letters, const py::ob
                 p[2 * m + 1] = list.j()[m];
             }
             a = pairs;
+            break;
+        }
+        case 'o': {
+            const std::vector<std::size_t>& offsets = list.offsets();
+            py::array_t<std::int64_t> copy(static_cast<py::ssize_t>(offsets.size()));
+            std::copy(offsets.begin(), offsets.end(), copy.mutable_data());
+            a = copy;
             break;
         }
         }

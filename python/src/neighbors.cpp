@@ -43,7 +43,7 @@ class PyNeighborList {
     // cutoff: a float (one cutoff), a dict {(species a, species b): cutoff} (a per-species-pair
     // table; compute() then needs species=) or None (compute() then needs radii=).
     PyNeighborList(const py::object& cutoff, bool full, bool sorted, int threads,
-                   const std::string& backend, std::size_t max_pairs) {
+                   const std::string& backend, std::size_t max_pairs, bool grouped) {
         if (py::isinstance<py::dict>(cutoff)) {
             for (const auto& entry : cutoff.cast<py::dict>()) {
                 try {
@@ -72,6 +72,7 @@ class PyNeighborList {
         per_atom_radii_ = cutoff.is_none();
         options_.half = !full;
         options_.sorted = sorted;
+        options_.grouped = grouped;
         options_.threads = threads;
         options_.backend = parse_backend(backend);
         options_.max_pairs = max_pairs;
@@ -87,6 +88,7 @@ class PyNeighborList {
         const Box search_box = box_from_rows(box, periodic);
         NeighborOptions options = options_;
         options.quantities = parse_quantities(quantities);
+        require_offsets_if_asked(quantities);
         const auto n = static_cast<std::size_t>(x.shape(0));
         const PointsView view(x.data(), n);
         if (per_atom_radii_ == radii.is_none()) {
@@ -131,6 +133,7 @@ class PyNeighborList {
         }
         NeighborOptions options = options_;
         options.quantities = parse_quantities(quantities);
+        require_offsets_if_asked(quantities);
         const py::sequence xs = checked_sequence(points, "points");
         const py::sequence hs = checked_sequence(boxes, "boxes");
         if (hs.size() != xs.size()) {
@@ -172,9 +175,18 @@ class PyNeighborList {
 
     bool full() const { return !options_.half; }
     bool sorted() const { return options_.sorted; }
+    bool grouped() const { return options_.grouped; }
     int threads() const { return options_.threads; }
 
   private:
+    // 'o' (per-atom offsets) exists only for a list grouped by i.
+    void require_offsets_if_asked(const std::string& quantities) const {
+        if (quantities.find('o') != std::string::npos && !options_.with_offsets()) {
+            throw py::value_error("quantity 'o' (per-atom offsets) needs a NeighborList made "
+                                  "with grouped=True or sorted=True");
+        }
+    }
+
     // A pooled list no view refers to (the pool's own reference is the only one), or a new
     // one. Keeps at most two unviewed lists, so memory follows what the caller still holds.
     std::shared_ptr<NeighborList> free_list() {
@@ -263,23 +275,25 @@ void bind_neighbors(py::module_& m) {
 Periodic neighbour list in a triclinic box.
 
 NeighborList(cutoff, full=True, sorted=False, threads=1, backend="auto", max_pairs=)doc" +
-                            std::to_string(default_max_pairs) + R"doc()
+                            std::to_string(default_max_pairs) + R"doc(, grouped=False)
 
 Pairs (i, j, S) with |D| < cutoff, D = points[j] - points[i] + S @ box, except (i, i, 0).
 cutoff may also be a dict {(a, b): cutoff} of integer species pairs (symmetric; a pair of
 species missing from it never counts; compute() then takes species=, one per point), or None
 for per-atom radii (compute() then takes radii=; a pair counts when d < r_i + r_j).
 full=False keeps each pair once (i < j, or i == j with S lexicographically positive).
-sorted=True orders pairs by i, then j, then S. threads=0 uses every core; the result is
+sorted=True orders pairs by i, then j, then S. grouped=True only groups them by i (each atom's
+pairs in the order the search found them, the same for any thread count), in one counting pass;
+both give per-atom offsets (quantity 'o'). threads=0 uses every core; the result is
 identical for any thread count. backend ()doc" +
                             quoted_backends() + R"doc() changes only the speed.
 max_pairs refuses a list of more pairs (a batch: in total) before it is allocated, from an
 estimate, or as soon as the stored pairs pass it; 0 = no limit.)doc";
     py::class_<PyNeighborList>(m, "NeighborList", doc.c_str())
-        .def(py::init<const py::object&, bool, bool, int, const std::string&, std::size_t>(),
+        .def(py::init<const py::object&, bool, bool, int, const std::string&, std::size_t, bool>(),
              py::arg("cutoff"), py::arg("full") = true, py::arg("sorted") = false,
              py::arg("threads") = 1, py::arg("backend") = "auto",
-             py::arg("max_pairs") = default_max_pairs)
+             py::arg("max_pairs") = default_max_pairs, py::arg("grouped") = false)
         .def("compute", &PyNeighborList::compute, py::arg("points"), py::arg("box"),
              py::arg("periodic") = true, py::arg("quantities") = "ijSd", py::arg("copy") = true,
              py::arg("radii") = py::none(), py::arg("species") = py::none(),
@@ -287,9 +301,10 @@ estimate, or as soon as the stored pairs pass it; 0 = no limit.)doc";
 Computes the list for N x 3 Cartesian points (anywhere, also outside the box) and a 3 x 3 box
 with the lattice vectors as rows; periodic is one bool or three. Returns numpy arrays in the
 order of the letters of quantities: i, j (uint32), S (int32, N x 3), d (float64), D (float64,
-N x 3), P (uint32, N x 2 pairs (i, j)); one letter returns one array. copy=False returns views
-of the list's own buffers instead of copies (P is always a new array); a view stays valid as
-long as it exists, and later calls never write into memory a view still refers to.)doc")
+N x 3), P (uint32, N x 2 pairs (i, j)), o (int64, N + 1 per-atom offsets of a grouped or
+sorted list: atom a's pairs are o[a]:o[a + 1]); one letter returns one array. copy=False
+returns views of the list's own buffers instead of copies (P and o are always new arrays); a
+view stays valid as long as it exists, and later calls never write into memory a view still refers to.)doc")
         .def("compute_batch", &PyNeighborList::compute_batch, py::arg("points"), py::arg("boxes"),
              py::arg("periodic") = true, py::arg("quantities") = "ijSd",
              R"doc(
@@ -299,9 +314,11 @@ vectors as rows), one per structure; periodic: one bool or three for every struc
 such entry per structure. Returns a tuple (offsets, *columns): offsets (int64, structures + 1)
 gives structure s the pairs offsets[s]:offsets[s + 1] of every column, and the columns are
 those of compute() (always copies) over all structures, i and j numbering the atoms of their
-own structure. Each structure gets exactly the list compute() gives it alone.)doc")
+own structure ('o': atom a of structure s has the pairs o[k]:o[k + 1], k = its index among all
+structures' atoms). Each structure gets exactly the list compute() gives it alone.)doc")
         .def_property_readonly("full", &PyNeighborList::full)
         .def_property_readonly("sorted", &PyNeighborList::sorted)
+        .def_property_readonly("grouped", &PyNeighborList::grouped)
         .def_property_readonly("threads", &PyNeighborList::threads);
 
     const std::string verlet_doc = R"doc(

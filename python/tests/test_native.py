@@ -134,6 +134,37 @@ def test_every_backend_gives_the_same_list(seed):
             np.testing.assert_array_equal(g, e, err_msg=f"seed {seed}, {backend}")
 
 
+@pytest.mark.parametrize("seed", range(12))
+def test_grouped_list_is_the_list_stably_grouped_by_i_with_offsets(seed):
+    cell, positions, pbc, cutoff, _ = random_system(seed, atoms=80)
+    full = seed % 2 == 0
+    for backend in tricell._tricell.backends():
+        plain = tricell.NeighborList(cutoff, full=full, backend=backend, threads=1 + seed % 3)
+        grouped = tricell.NeighborList(cutoff, full=full, backend=backend, grouped=True)
+        assert grouped.grouped and not plain.grouped
+        found = plain.compute(positions, cell, pbc, "ijSd")
+        i, j, S, d, o = grouped.compute(positions, cell, pbc, "ijSdo")
+        order = np.argsort(found[0], kind="stable")
+        for g, e in zip((i, j, S, d), found):
+            np.testing.assert_array_equal(g, e[order], err_msg=f"seed {seed}, {backend}")
+        assert o.dtype == np.int64 and len(o) == len(positions) + 1
+        np.testing.assert_array_equal(o, np.searchsorted(i, np.arange(len(positions) + 1)))
+    _, _, _, _, o_sorted = tricell.NeighborList(cutoff, full=full, sorted=True).compute(
+        positions, cell, pbc, "ijSdo")
+    np.testing.assert_array_equal(o, o_sorted)
+
+
+def test_offsets_need_a_grouped_or_sorted_list():
+    cell, positions, pbc, cutoff, _ = random_system(1, atoms=10)
+    with pytest.raises(ValueError, match="quantity 'o'.*grouped=True or sorted=True"):
+        tricell.NeighborList(cutoff).compute(positions, cell, pbc, "ijo")
+    with pytest.raises(ValueError, match="quantity 'o'"):
+        tricell.NeighborList(cutoff).compute_batch([positions], [cell], pbc, "ijo")
+    offsets, o = tricell.NeighborList(cutoff, grouped=True).compute_batch(
+        [positions, positions], [cell, cell], pbc, "o")
+    assert len(o) == 2 * len(positions) + 1 and o[-1] == offsets[-1]
+
+
 def test_concurrent_calls_from_python_threads():
     cell, positions, pbc, cutoff, _ = random_system(6, atoms=300, kind="triclinic",
                                                    pbc=(True, True, True))

@@ -9,8 +9,10 @@ letter returns an array, several a tuple); i, j and S as int64, d and D as float
 same shapes for an empty result; cutoff a float, one radius per atom (a pair counts when
 d < r_i + r_j) or a dict keyed by pairs of element symbols or atomic numbers (a pair of
 elements not in it never counts; a later key for the same two elements replaces an earlier
-one, as in ASE); self_interaction adds each atom's pair with itself at S = 0. Pairs are sorted
-by i, then j, then S (ASE guarantees the order by i only). max_nbins is accepted and ignored:
+one, as in ASE); self_interaction adds each atom's pair with itself at S = 0, first among
+that atom's pairs. Pairs come grouped by i in ascending order, as ASE promises (within one
+atom, in the order tricell's search found them); the grouping is one counting pass in the
+library, so the drop-in costs about what the search costs. max_nbins is accepted and ignored:
 tricell bounds its grid memory by the number of atoms.
 
 This module only translates arguments: the search, including per-atom and per-pair cutoffs,
@@ -76,14 +78,16 @@ def primitive_neighbor_list(quantities, pbc, cell, positions, cutoff, numbers=No
         positions = positions @ cell
     pbc = np.broadcast_to(np.asarray(pbc, dtype=bool), (3,))
 
-    needed = "ij" + "".join(q for q in "SdD" if q in quantities or (q == "S" and self_interaction))
+    needed = "ij" + "".join(q for q in "SdD" if q in quantities)
+    if self_interaction:
+        needed += "o"
     if isinstance(cutoff, dict):
         if numbers is None:
             raise ValueError("a cutoff dict of element pairs needs the atomic numbers (numbers=)")
         table = _species_table(cutoff)
         if not table:
             return _empty(quantities)
-        search = NeighborList(table, sorted=True)
+        search = NeighborList(table, grouped=True)
         extra = {"species": np.asarray(numbers)}
         # An atom and itself (d = 0) count when its element pair with itself has a cutoff.
         has_self = np.array([table.get((z, z), 0) > 0 for z in np.asarray(numbers).tolist()],
@@ -91,34 +95,39 @@ def primitive_neighbor_list(quantities, pbc, cell, positions, cutoff, numbers=No
     elif np.isscalar(cutoff):
         if not cutoff > 0:
             return _empty(quantities)  # ASE keeps d < cutoff: nothing for a cutoff <= 0
-        search = NeighborList(float(cutoff), sorted=True)
+        search = NeighborList(float(cutoff), grouped=True)
         extra = {}
         has_self = np.ones(len(positions), dtype=bool)
     else:
-        search = NeighborList(None, sorted=True)
+        search = NeighborList(None, grouped=True)
         extra = {"radii": np.asarray(cutoff, dtype=float)}
         has_self = extra["radii"] > 0
     found = search.compute(positions, complete_cell(cell), pbc, needed, **extra)
     columns = dict(zip(needed, found))
+    if self_interaction:
+        columns = _with_self_pairs(columns, columns.pop("o"), has_self)
     columns["i"] = columns["i"].astype(np.int64)
     columns["j"] = columns["j"].astype(np.int64)
     if "S" in columns:
         columns["S"] = columns["S"].astype(np.int64)
-    if self_interaction:
-        columns = _with_self_pairs(columns, np.flatnonzero(has_self))
     return _result(quantities, columns)
 
 
-def _with_self_pairs(columns, atoms):
-    """Adds (k, k, S = 0) with d = 0, D = 0 for the given atoms, keeping the order by i, j, S."""
-    atoms = atoms.astype(np.int64)
-    n = len(atoms)
-    zeros = {"i": atoms, "j": atoms, "S": np.zeros((n, 3), np.int64),
-             "d": np.zeros(n), "D": np.zeros((n, 3))}
-    merged = {q: np.concatenate([columns[q], zeros[q]]) for q in columns}
-    s = merged["S"]
-    order = np.lexsort((s[:, 2], s[:, 1], s[:, 0], merged["j"], merged["i"]))
-    return {q: merged[q][order] for q in merged}
+def _with_self_pairs(columns, offsets, has_self):
+    """Adds (a, a, S = 0) with d = 0, D = 0 for every atom a with has_self[a], first among the
+    pairs of a, keeping the grouping by i: one scatter of each column, no sort."""
+    pairs = len(columns["i"])
+    selves_to = np.cumsum(has_self)  # self pairs of the atoms 0..a
+    atoms = np.flatnonzero(has_self)
+    self_at = offsets[atoms] + selves_to[atoms] - 1
+    pair_at = np.arange(pairs) + selves_to[columns["i"]]
+    merged = {}
+    for q, column in columns.items():
+        out = np.empty((pairs + len(atoms),) + column.shape[1:], dtype=column.dtype)
+        out[pair_at] = column
+        out[self_at] = atoms if q in "ij" else 0
+        merged[q] = out
+    return merged
 
 
 def neighbor_list(quantities, a, cutoff, self_interaction=False, max_nbins=1e6):

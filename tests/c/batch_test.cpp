@@ -74,6 +74,7 @@ TEST(CApiBatch, MatchesCxxBitForBitAndBruteForce) {
         o.sorted = int(rng() % 2);
         o.vectors = 1;
         o.threads = int(rng() % 3); // 0 (all cores), 1 or 2
+        o.grouped = o.sorted == 0 ? int(rng() % 2) : 0;
         ASSERT_EQ(tricell_neighbors_batch(b.c.data(), b.c.size(), &o, list.get()), TRICELL_OK)
             << tricell_last_error();
         tricell_batch_pairs view;
@@ -83,6 +84,7 @@ TEST(CApiBatch, MatchesCxxBitForBitAndBruteForce) {
         cxx_options.cutoff = o.cutoff;
         cxx_options.half = o.half == 1;
         cxx_options.sorted = o.sorted == 1;
+        cxx_options.grouped = o.grouped == 1;
         cxx_options.quantities.vectors = true;
         cxx_options.threads = 1;
         tricell::BatchList cxx;
@@ -98,8 +100,8 @@ TEST(CApiBatch, MatchesCxxBitForBitAndBruteForce) {
         expect_same_array(cxx.shifts(), p.shifts, 3 * p.size);
         expect_same_array(cxx.distances(), p.distances, p.size);
         expect_same_array(cxx.vectors(), p.vectors, 3 * p.size);
-        ASSERT_EQ(p.offsets != nullptr, o.sorted == 1);
-        if (o.sorted == 1 && !cxx.offsets().empty()) {
+        ASSERT_EQ(p.offsets != nullptr, cxx_options.with_offsets());
+        if (cxx_options.with_offsets() && !cxx.offsets().empty()) {
             ASSERT_EQ(p.atoms, cxx.atom_offsets().back());
             expect_same_array(cxx.offsets(), p.offsets, p.atoms + 1);
         }
@@ -195,6 +197,12 @@ TEST(CApiBatch, EveryValidationBranch) {
     bad.sorted = 2;
     EXPECT_STATUS(tricell_neighbors_batch(b.c.data(), b.c.size(), &bad, list.get()),
                   TRICELL_ERROR_INVALID_ARGUMENT, "options.sorted must be 0 or 1 (got 2)");
+    expect_empty();
+    fill();
+    bad = o;
+    bad.grouped = -1;
+    EXPECT_STATUS(tricell_neighbors_batch(b.c.data(), b.c.size(), &bad, list.get()),
+                  TRICELL_ERROR_INVALID_ARGUMENT, "options.grouped must be 0 or 1 (got -1)");
     expect_empty();
     fill();
     bad = o;

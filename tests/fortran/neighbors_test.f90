@@ -8,7 +8,7 @@ program neighbors_test
     implicit none
 
     interface
-        function check_list(positions, n, box, periodic, cutoff, half, sorted, backend, radii, &
+        function check_list(positions, n, box, periodic, cutoff, half, order, backend, radii, &
                             species, table_pairs, table_cutoffs, table_count, npairs, i, j, &
                             shifts, distances, vectors) bind(c, name="tricell_test_check_list")
             import :: c_int, c_double, c_size_t, c_int32_t, c_ptr
@@ -16,7 +16,7 @@ program neighbors_test
             integer(c_size_t), value :: n, npairs, table_count
             integer(c_int), intent(in) :: periodic(3)
             real(c_double), value :: cutoff
-            integer(c_int), value :: half, sorted, backend
+            integer(c_int), value :: half, order, backend
             type(c_ptr), value :: radii, species, table_pairs, table_cutoffs
             integer(c_int32_t), intent(in) :: i(*), j(*), shifts(*)
             real(c_double), intent(in) :: distances(*), vectors(*)
@@ -64,7 +64,8 @@ contains
         ! Species pairs 0-0, 0-1 and 2-2 (1-1, 1-2 and 0-2 are missing: never counted).
         integer, target :: table_pairs(2, 3) = reshape([0, 0, 0, 1, 2, 2], [2, 3])
         real(c_double), target :: table_cutoffs(3)
-        logical :: periodic(3), half, sorted
+        logical :: periodic(3), half, sorted, grouped
+        integer(c_int) :: order
         integer :: n, k, a, status, problems, bits, backend, rule
         integer, allocatable :: seeds(:)
 
@@ -106,6 +107,8 @@ contains
         half = r < 0.5d0
         call random_number(r)
         sorted = r < 0.5d0
+        grouped = .not. sorted .and. r < 0.75d0
+        order = merge(1, merge(2, 0, grouped), sorted) ! as check_list takes it
 
         call random_number(r)
         backend = int(4 * r) ! automatic, dense, linked, hash
@@ -118,16 +121,17 @@ contains
         table_cutoffs = cutoff * [0.5d0, 0.8d0, 1d0]
         select case (rule)
         case (0)
-            list = tricell_neighbor_list(cutoff, half=half, sorted=sorted, vectors=.true., &
-                                         backend=backend)
+            list = tricell_neighbor_list(cutoff, half=half, sorted=sorted, grouped=grouped, &
+                                         vectors=.true., backend=backend)
             call list%compute(x, box, periodic, status)
         case (1)
-            list = tricell_neighbor_list(0d0, half=half, sorted=sorted, vectors=.true., &
-                                         backend=backend)
+            list = tricell_neighbor_list(0d0, half=half, sorted=sorted, grouped=grouped, &
+                                         vectors=.true., backend=backend)
             call list%compute(x, box, periodic, status, radii=radii)
         case default
-            list = tricell_neighbor_list(0d0, half=half, sorted=sorted, vectors=.true., &
-                                         backend=backend, species_pairs=table_pairs, &
+            list = tricell_neighbor_list(0d0, half=half, sorted=sorted, grouped=grouped, &
+                                         vectors=.true., backend=backend, &
+                                         species_pairs=table_pairs, &
                                          species_cutoffs=table_cutoffs)
             call list%compute(x, box, periodic, status, species=species)
         end select
@@ -139,25 +143,25 @@ contains
         total_pairs = total_pairs + list%npairs
         if (rule == 0) then
             problems = check_list(x, int(n, c_size_t), box, merge(1, 0, periodic), cutoff, &
-                                  merge(1, 0, half), merge(1, 0, sorted), int(backend, c_int), &
+                                  merge(1, 0, half), order, int(backend, c_int), &
                                   c_null_ptr, c_null_ptr, c_null_ptr, c_null_ptr, 0_c_size_t, &
                                   int(list%npairs, c_size_t), list%i, list%j, list%shifts, &
                                   list%distances, list%vectors)
         else if (rule == 1) then
             problems = check_list(x, int(n, c_size_t), box, merge(1, 0, periodic), 0d0, &
-                                  merge(1, 0, half), merge(1, 0, sorted), int(backend, c_int), &
+                                  merge(1, 0, half), order, int(backend, c_int), &
                                   c_loc(radii), c_null_ptr, c_null_ptr, c_null_ptr, 0_c_size_t, &
                                   int(list%npairs, c_size_t), list%i, list%j, list%shifts, &
                                   list%distances, list%vectors)
         else
             problems = check_list(x, int(n, c_size_t), box, merge(1, 0, periodic), 0d0, &
-                                  merge(1, 0, half), merge(1, 0, sorted), int(backend, c_int), &
+                                  merge(1, 0, half), order, int(backend, c_int), &
                                   c_null_ptr, c_loc(species), c_loc(table_pairs), &
                                   c_loc(table_cutoffs), 3_c_size_t, &
                                   int(list%npairs, c_size_t), list%i, list%j, list%shifts, &
                                   list%distances, list%vectors)
         end if
-        problems = problems + check_in_fortran(list, x, box, cutoff, sorted)
+        problems = problems + check_in_fortran(list, x, box, cutoff, sorted .or. grouped)
         if (problems /= 0) then
             print '(a, i0, a, i0, a)', 'seed ', seed, ': ', problems, ' problems'
             failures = failures + 1

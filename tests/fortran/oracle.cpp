@@ -27,11 +27,11 @@ int report(int& problems, const char* what, std::size_t k) {
 // box_columns is the Fortran box(3, 3), lattice vector k in column k; periodic holds 0 or 1.
 // Every quantity is required (shifts, distances and vectors stored). With radii (n) or species
 // (n) and a table of table_count entries (pairs(2, k), cutoffs(k)) the rule is variable and the
-// list is compared with the C++ one only (tests/c checks those against brute force). Returns
-// the number of problems found (0: the list is right).
+// list is compared with the C++ one only (tests/c checks those against brute force). order: 0
+// as found, 1 sorted, 2 grouped. Returns the number of problems found (0: the list is right).
 extern "C" int tricell_test_check_list(
     const double* positions, std::size_t n, const double* box_columns, const int* periodic,
-    double cutoff, int half, int sorted, int backend, const double* radii,
+    double cutoff, int half, int order, int backend, const double* radii,
     const std::int32_t* species, const std::int32_t* table_pairs, const double* table_cutoffs,
     std::size_t table_count, std::size_t npairs, const std::int32_t* i, const std::int32_t* j,
     const std::int32_t* shifts, const double* distances, const double* vectors) {
@@ -55,7 +55,8 @@ extern "C" int tricell_test_check_list(
     NeighborOptions options;
     options.cutoff = cutoff;
     options.half = half == 1;
-    options.sorted = sorted == 1;
+    options.sorted = order == 1;
+    options.grouped = order == 2;
     options.quantities.vectors = true;
     options.backend = static_cast<SearchBackend>(backend);
     if (radii != nullptr) {

@@ -82,6 +82,21 @@ int flag(FuzzedDataProvider& in) {
                                                 : in.ConsumeBool();
 }
 
+// options.sorted and options.grouped from the bytes flag() reads for one flag (so a corpus
+// input means what it meant before grouped existed): a bad value goes to one of the two, and
+// an even second byte with bit 1 set asks for grouped.
+void order_flags(FuzzedDataProvider& in, tricell_neighbor_options& o) {
+    o.sorted = o.grouped = 0;
+    if (in.ConsumeIntegralInRange(0, 7) == 0) {
+        const int bad = pick(in, {2, -1, 255, 1 << 30});
+        (bad == 2 || bad == 255 ? o.sorted : o.grouped) = bad;
+        return;
+    }
+    const int order = in.ConsumeIntegralInRange(0, 3); // bit 0 is what ConsumeBool() reads
+    o.sorted = order & 1;
+    o.grouped = order == 2 ? 1 : 0;
+}
+
 // The status promise of every call; returns whether it succeeded.
 bool check_status(tricell_status status, const char* call) {
     const char* message = tricell_last_error();
@@ -310,7 +325,7 @@ tricell_neighbor_options neighbor_options(FuzzedDataProvider& in, std::size_t n,
         o.cutoff = in.ConsumeFloatingPointInRange(0.0, 7.0);
     }
     o.half = flag(in);
-    o.sorted = flag(in);
+    order_flags(in, o);
     o.shifts = in.ConsumeIntegralInRange(0, 3) == 0 ? flag(in) : 1;
     o.distances = in.ConsumeIntegralInRange(0, 3) == 0 ? flag(in) : 1;
     o.vectors = flag(in);
@@ -368,10 +383,10 @@ void print_call(const tricell_box& box, const std::vector<Eigen::Vector3d>& x,
         std::fprintf(stderr, "x %.17g %.17g %.17g\n", r[0], r[1], r[2]);
     }
     std::fprintf(stderr,
-                 "cutoff %.17g half %d sorted %d shifts %d distances %d vectors %d threads %d "
-                 "backend %d max_pairs %zu radii %s species %s table %zu\n",
-                 o.cutoff, o.half, o.sorted, o.shifts, o.distances, o.vectors, o.threads, o.backend,
-                 o.max_pairs, o.radii ? "set" : "NULL", o.species ? "set" : "NULL",
+                 "cutoff %.17g half %d sorted %d grouped %d shifts %d distances %d vectors %d "
+                 "threads %d backend %d max_pairs %zu radii %s species %s table %zu\n",
+                 o.cutoff, o.half, o.sorted, o.grouped, o.shifts, o.distances, o.vectors, o.threads,
+                 o.backend, o.max_pairs, o.radii ? "set" : "NULL", o.species ? "set" : "NULL",
                  o.species_cutoff_count);
     for (std::size_t i = 0; o.radii != nullptr && i < x.size(); ++i) {
         std::fprintf(stderr, "radius %.17g\n", o.radii[i]);
@@ -405,7 +420,7 @@ double largest_cutoff(const tricell_neighbor_options& o, std::size_t n) {
 // The same options for the C++ API, copied field by field as a C caller means them.
 std::optional<tricell::NeighborOptions> cxx_options(const tricell_neighbor_options& o,
                                                     std::size_t n) {
-    for (const int f : {o.half, o.sorted, o.shifts, o.distances, o.vectors}) {
+    for (const int f : {o.half, o.sorted, o.grouped, o.shifts, o.distances, o.vectors}) {
         if (f != 0 && f != 1) {
             return std::nullopt;
         }
@@ -417,6 +432,7 @@ std::optional<tricell::NeighborOptions> cxx_options(const tricell_neighbor_optio
     c.cutoff = o.cutoff;
     c.half = o.half == 1;
     c.sorted = o.sorted == 1;
+    c.grouped = o.grouped == 1;
     c.quantities = tricell::Quantities{o.shifts == 1, o.distances == 1, o.vectors == 1};
     c.threads = o.threads;
     c.backend = static_cast<tricell::SearchBackend>(o.backend);
@@ -571,14 +587,15 @@ void neighbors(FuzzedDataProvider& in, State& state) {
     if ((pairs.shifts == nullptr) == (options.shifts == 1) ||
         (pairs.distances == nullptr) == (options.distances == 1) ||
         (pairs.vectors == nullptr) == (options.vectors == 1) ||
-        (pairs.offsets == nullptr) == (options.sorted == 1)) {
+        (pairs.offsets == nullptr) == (options.sorted == 1 || options.grouped == 1)) {
         broken("a stored quantity is NULL or one not asked for is not");
     }
     tricell::fuzz::ListView v{pairs.size,   pairs.i,       pairs.j,
                               pairs.shifts, pairs.offsets, pairs.atoms + 1};
     tricell::fuzz::check_rules(*cbox, n, options.half == 1,
-                               options.sorted == 1 ? tricell::fuzz::Order::sorted
-                                                   : tricell::fuzz::Order::any,
+                               options.sorted == 1    ? tricell::fuzz::Order::sorted
+                               : options.grouped == 1 ? tricell::fuzz::Order::grouped
+                                                      : tricell::fuzz::Order::any,
                                options.max_pairs, v);
 
     // The oracle, for one cutoff, radii or a species table.

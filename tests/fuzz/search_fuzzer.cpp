@@ -215,7 +215,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     NeighborOptions options;
     options.cutoff = cutoff(in, box, x);
     options.half = in.ConsumeBool();
-    options.sorted = in.ConsumeBool();
+    const int order = in.ConsumeIntegralInRange(0, 3); // bit 0 is what ConsumeBool() reads
+    options.sorted = (order & 1) != 0;
+    options.grouped = order == 2;
     options.threads = int(pick(in, {1, 1, 2, 3, 0}));
     options.cells_per_cutoff = pick(in, {1, 1, 2, 3, 1.5});
     options.reduce_cell = in.ConsumeBool();
@@ -244,9 +246,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             std::fprintf(stderr, "x %.17g %.17g %.17g\n", r[0], r[1], r[2]);
         }
         std::fprintf(stderr,
-                     "cutoff %.17g half %d sorted %d threads %d cells_per_cutoff %g reduce_cell %d "
-                     "max_cells %zu hash_table_size %zu leaf_size %zu\n",
-                     options.cutoff, options.half, options.sorted, options.threads,
+                     "cutoff %.17g half %d sorted %d grouped %d threads %d cells_per_cutoff %g "
+                     "reduce_cell %d max_cells %zu hash_table_size %zu leaf_size %zu\n",
+                     options.cutoff, options.half, options.sorted, options.grouped, options.threads,
                      options.cells_per_cutoff, options.reduce_cell, options.max_cells,
                      options.hash_table_size, options.leaf_size);
     }
@@ -293,8 +295,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             broken("pairs without atoms");
         }
         tricell::fuzz::check_rules(box, x.size(), options.half,
-                                   options.sorted ? tricell::fuzz::Order::sorted
-                                                  : tricell::fuzz::Order::any,
+                                   options.sorted    ? tricell::fuzz::Order::sorted
+                                   : options.grouped ? tricell::fuzz::Order::grouped
+                                                     : tricell::fuzz::Order::any,
                                    max_pairs, tricell::fuzz::view(list));
         if (options.threads != 1) {
             // The stored list is the same pair for pair whatever the number of threads.

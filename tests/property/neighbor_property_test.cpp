@@ -4,6 +4,7 @@
 // with the dense one pair for pair.
 #include <algorithm>
 #include <cstdint>
+#include <numeric>
 #include <random>
 
 #include <Eigen/Geometry>
@@ -417,6 +418,57 @@ TYPED_TEST(NeighborProperty, OutputIdenticalForAnyThreadCount_RandomCases) {
             ASSERT_EQ(one.distances(), many.distances());
             ASSERT_EQ(one.vectors(), many.vectors());
         }
+    }
+}
+
+// grouped: the list in the search's order, stably grouped by i, with per-atom offsets; sorted
+// then orders each atom's pairs by (j, S). Both are checked against a stable sort of the
+// unordered list by i, with any thread count and without stored shifts too.
+TYPED_TEST(NeighborProperty, GroupedListIsTheUnorderedListStablyGroupedByI_RandomCases) {
+    for (std::uint64_t seed = 2; seed < case_count; seed += 3) {
+        const RandomSystem sys = tricell::testing::random_system(seed);
+        if (this->skip(sys)) {
+            continue;
+        }
+        SCOPED_TRACE(testing::Message() << "seed " << seed << " (" << sys.kind << ")");
+        NeighborOptions o = this->options(seed, sys.cutoff);
+        o.half = seed % 2 == 1;
+        o.quantities.shifts = seed % 5 != 0;
+        const NeighborList plain = tricell::compute_neighbors(sys.box(), sys.positions, o);
+        o.grouped = true;
+        const NeighborList grouped = tricell::compute_neighbors(sys.box(), sys.positions, o);
+        o.grouped = false;
+        o.sorted = true;
+        const NeighborList sorted = tricell::compute_neighbors(sys.box(), sys.positions, o);
+
+        std::vector<std::size_t> order(plain.size());
+        std::iota(order.begin(), order.end(), std::size_t(0));
+        std::stable_sort(order.begin(), order.end(),
+                         [&](std::size_t a, std::size_t b) { return plain.i()[a] < plain.i()[b]; });
+        ASSERT_EQ(grouped.size(), plain.size());
+        for (std::size_t k = 0; k < order.size(); ++k) {
+            const std::size_t p = order[k];
+            ASSERT_EQ(grouped.i()[k], plain.i()[p]) << "pair " << k;
+            ASSERT_EQ(grouped.j()[k], plain.j()[p]) << "pair " << k;
+            ASSERT_EQ(grouped.distances()[k], plain.distances()[p]) << "pair " << k;
+            for (std::size_t a = 0; a < 3; ++a) {
+                ASSERT_EQ(grouped.vectors()[3 * k + a], plain.vectors()[3 * p + a]);
+                if (o.quantities.shifts) {
+                    ASSERT_EQ(grouped.shifts()[3 * k + a], plain.shifts()[3 * p + a]);
+                }
+            }
+        }
+        ASSERT_EQ(grouped.shifts().size(), plain.shifts().size());
+        ASSERT_EQ(grouped.offsets(), sorted.offsets());
+        ASSERT_EQ(grouped.offsets().size(), sys.positions.size() + 1);
+        ASSERT_EQ(grouped.offsets().front(), 0u);
+        ASSERT_EQ(grouped.offsets().back(), grouped.size());
+        for (std::size_t atom = 0; atom < sys.positions.size(); ++atom) {
+            for (std::size_t k = grouped.offsets()[atom]; k < grouped.offsets()[atom + 1]; ++k) {
+                ASSERT_EQ(grouped.i()[k], atom) << "pair " << k;
+            }
+        }
+        EXPECT_TRUE(plain.offsets().empty());
     }
 }
 

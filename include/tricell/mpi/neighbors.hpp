@@ -56,7 +56,8 @@ class TRICELL_MPI_API DistributedSearch {
     /// radius over all ranks, or the largest cutoff of options.species_cutoffs.
     void build(const Decomposition& decomposition, const Box& box, const LocalAtoms& atoms,
                const NeighborOptions& options);
-    /// This rank's pairs, as the options asked (sorted: by i, then j, then S).
+    /// This rank's pairs, as the options asked (sorted or grouped: by i, then j, then S, without
+    /// offsets, since i is a global id).
     void compute(DistributedPairs& out) const;
     const Halo& halo() const { return halo_; }
 
