@@ -421,9 +421,9 @@ TYPED_TEST(NeighborProperty, OutputIdenticalForAnyThreadCount_RandomCases) {
     }
 }
 
-// grouped: the list in the search's order, stably grouped by i, with per-atom offsets; sorted
-// then orders each atom's pairs by (j, S). Both are checked against a stable sort of the
-// unordered list by i, with any thread count and without stored shifts too.
+// grouped: the unordered list stably grouped by i (checked against a stable sort of it by i),
+// with per-atom offsets equal to the sorted list's; with any thread count, and without stored
+// shifts too.
 TYPED_TEST(NeighborProperty, GroupedListIsTheUnorderedListStablyGroupedByI_RandomCases) {
     for (std::uint64_t seed = 2; seed < case_count; seed += 3) {
         const RandomSystem sys = tricell::testing::random_system(seed);
