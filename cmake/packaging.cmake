@@ -47,6 +47,25 @@ if(TRICELL_INSTALL)
         install(DIRECTORY "${PROJECT_BINARY_DIR}/fortran/modules/"
             DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}/tricell/fortran")
     endif()
+    # pkg-config files for C and Fortran programs built without CMake. They find the prefix
+    # from their own place (pcfiledir), so an install with --prefix or DESTDIR stays usable.
+    set(pkgconfig_dir "${CMAKE_INSTALL_LIBDIR}/pkgconfig")
+    if(IS_ABSOLUTE "${CMAKE_INSTALL_LIBDIR}" OR IS_ABSOLUTE "${CMAKE_INSTALL_INCLUDEDIR}")
+        message(STATUS "tricell: no pkg-config files, they need a relative CMAKE_INSTALL_LIBDIR "
+                       "and CMAKE_INSTALL_INCLUDEDIR (got ${CMAKE_INSTALL_LIBDIR}, "
+                       "${CMAKE_INSTALL_INCLUDEDIR})")
+    else()
+        file(RELATIVE_PATH tricell_pc_to_prefix "/prefix/${pkgconfig_dir}" "/prefix")
+        foreach(target_and_file "tricell_c;tricell" "tricell_fortran;tricell-fortran")
+            list(GET target_and_file 0 target)
+            list(GET target_and_file 1 pc_name)
+            if(TARGET ${target})
+                configure_file("${CMAKE_CURRENT_LIST_DIR}/${pc_name}.pc.in"
+                    "${PROJECT_BINARY_DIR}/${pc_name}.pc" @ONLY)
+                install(FILES "${PROJECT_BINARY_DIR}/${pc_name}.pc" DESTINATION "${pkgconfig_dir}")
+            endif()
+        endforeach()
+    endif()
     install(EXPORT tricell-targets NAMESPACE tricell::
         DESTINATION "${TRICELL_CONFIG_DIR}")
     install(FILES

@@ -84,9 +84,12 @@ partial averages over the frames that hold both species.)doc")
 Adds one frame: N x 3 Cartesian points, a 3 x 3 box with the lattice vectors as rows, and
 optionally N non-negative integer species (atomic numbers, say). A refused frame changes
 nothing.)doc")
-        .def_property_readonly("frames", &Rdf::frames)
-        .def_property_readonly("edges", [](const Rdf& rdf) { return to_numpy(rdf.edges()); })
-        .def_property_readonly("species", &Rdf::species)
+        .def_property_readonly("frames", &Rdf::frames, "The number of frames added so far.")
+        .def_property_readonly(
+            "edges", [](const Rdf& rdf) { return to_numpy(rdf.edges()); },
+            "The bins + 1 bin edges, 0 to rmax.")
+        .def_property_readonly("species", &Rdf::species,
+                               "The species seen in the frames, ascending.")
         .def(
             "total", [](const Rdf& rdf) { return curve_tuple(rdf.total()); },
             "(r, g, n): bin centres, g(r) and n(r) averaged over the frames.")

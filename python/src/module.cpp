@@ -40,6 +40,7 @@ PYBIND11_MODULE(_tricell, m) {
             PyErr_SetString(PyExc_ValueError, e.what());
         }
     });
+    m.attr("__version__") = TRICELL_PYTHON_VERSION;
     m.def(
         "backends",
         [] {

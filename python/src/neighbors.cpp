@@ -316,14 +316,21 @@ gives structure s the pairs offsets[s]:offsets[s + 1] of every column, and the c
 those of compute() (always copies) over all structures, i and j numbering the atoms of their
 own structure ('o': atom a of structure s has the pairs o[k]:o[k + 1], k = its index among all
 structures' atoms). Each structure gets exactly the list compute() gives it alone.)doc")
-        .def_property_readonly("full", &PyNeighborList::full)
-        .def_property_readonly("sorted", &PyNeighborList::sorted)
-        .def_property_readonly("grouped", &PyNeighborList::grouped)
-        .def_property_readonly("threads", &PyNeighborList::threads);
+        .def_property_readonly("full", &PyNeighborList::full,
+                               "True: both (i, j) and (j, i); False: each pair once.")
+        .def_property_readonly("sorted", &PyNeighborList::sorted,
+                               "Pairs ordered by i, then j, then S.")
+        .def_property_readonly("grouped", &PyNeighborList::grouped,
+                               "Pairs grouped by i, in the search's order within each atom.")
+        .def_property_readonly("threads", &PyNeighborList::threads,
+                               "Threads of a search (0: every core).");
 
     const std::string verlet_doc = R"doc(
 Verlet list: candidates within cutoff + skin, rebuilt only when some atom moved far enough
-that a pair could be missed (see include/tricell/verlet.hpp for the rule).
+that a pair could be missed: by more than skin / 2 since the build, less the box's strain
+since then times the cutoff when the box changes (displacements are measured in the build's
+fractional frame, so wrapping or a whole lattice vector never counts), or when the atom count
+or periodicity changes.
 
 VerletList(cutoff, skin, full=True, threads=1, max_pairs=)doc" +
                                    std::to_string(verlet_max_pairs) + R"doc(); max_pairs bounds
@@ -338,11 +345,14 @@ the candidates within cutoff + skin as NeighborList's bounds its pairs (0 = no l
 Refreshes the pairs within the cutoff for these points and box (rebuilding the candidates
 when needed) and returns them as NeighborList.compute does (always copies). Pairs come
 grouped by increasing i.)doc")
-        .def_property_readonly("cutoff", &PyVerletList::cutoff)
-        .def_property_readonly("skin", &PyVerletList::skin)
+        .def_property_readonly("cutoff", &PyVerletList::cutoff,
+                               "r_c: update() gives the pairs with |D| < r_c.")
+        .def_property_readonly("skin", &PyVerletList::skin,
+                               "Candidates are built at cutoff + skin.")
         .def_property_readonly("rebuilt", &PyVerletList::rebuilt,
                                "Whether the last update() rebuilt the candidates.")
-        .def_property_readonly("rebuild_count", &PyVerletList::rebuild_count);
+        .def_property_readonly("rebuild_count", &PyVerletList::rebuild_count,
+                               "How many times the candidates were built.");
 }
 
 } // namespace tricell::python

@@ -64,7 +64,8 @@ py::tuple read(const std::string& path, const std::string& format) {
 } // namespace
 
 void bind_read(py::module_& m) {
-    m.def("_read", &read, py::arg("path"), py::arg("format") = "");
+    m.def("_read", &read, py::arg("path"), py::arg("format") = "",
+          "The fields of tricell.Structure as a tuple; tricell.read is the public call.");
 }
 
 } // namespace tricell::python

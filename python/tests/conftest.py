@@ -18,6 +18,15 @@ import pytest
 if "asan" not in os.environ.get("LD_PRELOAD", ""):
     resource.setrlimit(resource.RLIMIT_AS, (4 << 30, resource.getrlimit(resource.RLIMIT_AS)[1]))
 
+# The runs against an installed copy (pip, in a virtual environment) name where it must be.
+_expected_package_dir = os.environ.get("TRICELL_EXPECT_PACKAGE_DIR")
+if _expected_package_dir:
+    import tricell
+
+    if not os.path.realpath(tricell.__file__).startswith(os.path.realpath(_expected_package_dir)):
+        raise ImportError(f"tricell comes from {tricell.__file__}, not from the installed copy "
+                          f"in {_expected_package_dir}")
+
 ALL_PBC = list(itertools.product([False, True], repeat=3))
 SOURCE_DIR = os.environ.get(
     "TRICELL_SOURCE_DIR", os.path.dirname(os.path.dirname(os.path.dirname(__file__))))

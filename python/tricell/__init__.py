@@ -18,7 +18,7 @@ from typing import List, NamedTuple, Tuple
 
 import numpy as np
 
-from ._tricell import NeighborList, Rdf, VerletList, _read, backends, nearest_neighbors
+from ._tricell import NeighborList, Rdf, VerletList, __version__, _read, backends, nearest_neighbors
 
 __all__ = [
     "NeighborList", "VerletList", "Rdf", "nearest_neighbors", "Structure", "read", "backends",

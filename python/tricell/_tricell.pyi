@@ -1,0 +1,104 @@
+# Signatures of the native module tricell._tricell, for editors and type checkers; the
+# docstrings (help(tricell.NeighborList), ...) explain the arguments. test_native.py checks that
+# every name, parameter and default here matches the compiled module.
+from typing import Dict, List, Optional, Sequence, Tuple, Union
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+__version__: str
+
+Periodic = Union[bool, Sequence[bool]]
+Cutoff = Union[float, Dict[Tuple[int, int], float], None]
+
+def backends() -> List[str]: ...
+
+class NeighborList:
+    def __init__(
+        self,
+        cutoff: Cutoff,
+        full: bool = True,
+        sorted: bool = False,
+        threads: int = 1,
+        backend: str = "auto",
+        max_pairs: int = 500000000,
+        grouped: bool = False,
+    ) -> None: ...
+    def compute(
+        self,
+        points: ArrayLike,
+        box: ArrayLike,
+        periodic: Periodic = True,
+        quantities: str = "ijSd",
+        copy: bool = True,
+        radii: Optional[ArrayLike] = None,
+        species: Optional[ArrayLike] = None,
+    ) -> Union[np.ndarray, Tuple[np.ndarray, ...]]: ...
+    def compute_batch(
+        self,
+        points: Sequence[ArrayLike],
+        boxes: Sequence[ArrayLike],
+        periodic: Union[Periodic, Sequence[Periodic]] = True,
+        quantities: str = "ijSd",
+    ) -> Tuple[np.ndarray, ...]: ...
+    @property
+    def full(self) -> bool: ...
+    @property
+    def sorted(self) -> bool: ...
+    @property
+    def grouped(self) -> bool: ...
+    @property
+    def threads(self) -> int: ...
+
+class VerletList:
+    def __init__(
+        self,
+        cutoff: float,
+        skin: float,
+        full: bool = True,
+        threads: int = 1,
+        max_pairs: int = 500000000,
+    ) -> None: ...
+    def update(
+        self,
+        points: ArrayLike,
+        box: ArrayLike,
+        periodic: Periodic = True,
+        quantities: str = "ijSd",
+    ) -> Union[np.ndarray, Tuple[np.ndarray, ...]]: ...
+    @property
+    def cutoff(self) -> float: ...
+    @property
+    def skin(self) -> float: ...
+    @property
+    def rebuilt(self) -> bool: ...
+    @property
+    def rebuild_count(self) -> int: ...
+
+class Rdf:
+    def __init__(self, rmax: float, bins: int, threads: int = 1, backend: str = "auto") -> None: ...
+    def add_frame(
+        self,
+        points: ArrayLike,
+        box: ArrayLike,
+        periodic: Periodic = True,
+        species: Optional[ArrayLike] = None,
+    ) -> None: ...
+    def total(self) -> Tuple[np.ndarray, np.ndarray, np.ndarray]: ...
+    def partial(self, a: int, b: int) -> Tuple[np.ndarray, np.ndarray, np.ndarray]: ...
+    @property
+    def frames(self) -> int: ...
+    @property
+    def edges(self) -> np.ndarray: ...
+    @property
+    def species(self) -> List[int]: ...
+
+def nearest_neighbors(
+    points: ArrayLike,
+    box: ArrayLike,
+    periodic: Periodic = True,
+    k: int = 1,
+    threads: int = 1,
+    backend: str = "auto",
+) -> Tuple[np.ndarray, np.ndarray, np.ndarray]: ...
+def _read(path: str, format: str = "") -> tuple: ...
