@@ -14,6 +14,7 @@ packages=(
     clang-format
     gfortran                   # the Fortran module and its tests
     pybind11-dev python3-dev python3-pytest   # the Python module and its tests
+    python3-torch libtorch-dev   # tricell.torch (the PyTorch op library) and its tests
     libopenmpi-dev openmpi-bin # tricell::mpi and its multi-rank tests
     clang-14 libclang-rt-14-dev   # libFuzzer harnesses
     libcairo2-dev              # plots (SVG and PNG)
