@@ -30,15 +30,53 @@ std::vector<std::size_t> grouping(PairColumns& columns, std::size_t atoms) {
     return perm;
 }
 
+// Copies each run [runs[r], runs[r + 1]) of column `from` (width values per pair) to the place
+// its atom's cursor gives, advancing the cursor: a counting sort that moves runs, not pairs.
+template <class T>
+void scatter_runs(PairArray<T>& from, const std::vector<std::size_t>& runs,
+                  const PairArray<std::uint32_t>& is, std::vector<std::size_t> cursor,
+                  std::size_t width) {
+    if (from.empty()) {
+        return;
+    }
+    PairArray<T> to(from.size());
+    for (std::size_t r = 0; r + 1 < runs.size(); ++r) {
+        const std::size_t begin = runs[r];
+        const std::size_t length = runs[r + 1] - begin;
+        std::size_t& at = cursor[is[begin]];
+        std::copy_n(from.begin() + std::ptrdiff_t(width * begin), width * length,
+                    to.begin() + std::ptrdiff_t(width * at));
+        at += length;
+    }
+    from.swap(to);
+}
+
 } // namespace
 
 void group_pairs(PairColumns& columns, std::size_t atoms) {
-    // Already grouped (a few atoms, or a search that met the atoms in order): nothing moves.
-    if (std::is_sorted(columns.i.begin(), columns.i.end())) {
-        count_offsets(columns, atoms);
-        return;
+    count_offsets(columns, atoms);
+    // The search meets each atom's pairs in runs (a cell's atoms against one stencil row at a
+    // time), several pairs long: the runs move whole, and i is written from the offsets.
+    const PairArray<std::uint32_t>& is = columns.i;
+    std::vector<std::size_t> runs;
+    for (std::size_t k = 0; k < is.size(); ++k) {
+        if (k == 0 || is[k] != is[k - 1]) {
+            runs.push_back(k);
+        }
     }
-    columns.permute(grouping(columns, atoms));
+    if (runs.size() <= atoms && std::is_sorted(is.begin(), is.end())) {
+        return; // already grouped (a few atoms, or a search that met the atoms in order)
+    }
+    runs.push_back(is.size());
+    const std::vector<std::size_t> cursor(columns.offsets.begin(), columns.offsets.end() - 1);
+    scatter_runs(columns.j, runs, is, cursor, 1);
+    scatter_runs(columns.shifts, runs, is, cursor, 3);
+    scatter_runs(columns.distances, runs, is, cursor, 1);
+    scatter_runs(columns.vectors, runs, is, cursor, 3);
+    for (std::size_t a = 0; a < atoms; ++a) {
+        std::fill(columns.i.begin() + std::ptrdiff_t(columns.offsets[a]),
+                  columns.i.begin() + std::ptrdiff_t(columns.offsets[a + 1]), std::uint32_t(a));
+    }
 }
 
 void sort_pairs(PairColumns& columns, std::size_t atoms) {

@@ -102,20 +102,18 @@ def primitive_neighbor_list(quantities, pbc, cell, positions, cutoff, numbers=No
         search = NeighborList(None, grouped=True)
         extra = {"radii": np.asarray(cutoff, dtype=float)}
         has_self = extra["radii"] > 0
-    found = search.compute(positions, complete_cell(cell), pbc, needed, **extra)
+    # Views of the list's buffers (copy=False): each column is copied once, into ASE's dtype.
+    found = search.compute(positions, complete_cell(cell), pbc, needed, copy=False, **extra)
     columns = dict(zip(needed, found))
     if self_interaction:
-        columns = _with_self_pairs(columns, columns.pop("o"), has_self)
-    columns["i"] = columns["i"].astype(np.int64)
-    columns["j"] = columns["j"].astype(np.int64)
-    if "S" in columns:
-        columns["S"] = columns["S"].astype(np.int64)
-    return _result(quantities, columns)
+        return _result(quantities, _with_self_pairs(columns, columns.pop("o"), has_self))
+    return _result(quantities, {q: column.astype(_EMPTY[q][0]) for q, column in columns.items()})
 
 
 def _with_self_pairs(columns, offsets, has_self):
     """Adds (a, a, S = 0) with d = 0, D = 0 for every atom a with has_self[a], first among the
-    pairs of a, keeping the grouping by i: one scatter of each column, no sort."""
+    pairs of a, keeping the grouping by i: one scatter of each column into ASE's dtype, no
+    sort."""
     pairs = len(columns["i"])
     selves_to = np.cumsum(has_self)  # self pairs of the atoms 0..a
     atoms = np.flatnonzero(has_self)
@@ -123,7 +121,7 @@ def _with_self_pairs(columns, offsets, has_self):
     pair_at = np.arange(pairs) + selves_to[columns["i"]]
     merged = {}
     for q, column in columns.items():
-        out = np.empty((pairs + len(atoms),) + column.shape[1:], dtype=column.dtype)
+        out = np.empty((pairs + len(atoms),) + column.shape[1:], dtype=_EMPTY[q][0])
         out[pair_at] = column
         out[self_at] = atoms if q in "ij" else 0
         merged[q] = out
