@@ -31,15 +31,17 @@ std::vector<std::size_t> grouping(PairColumns& columns, std::size_t atoms) {
 }
 
 // Copies each run [runs[r], runs[r + 1]) of column `from` (width values per pair) to the place
-// its atom's cursor gives, advancing the cursor: a counting sort that moves runs, not pairs.
+// its atom's cursor gives in `to`, advancing the cursor: a counting sort that moves runs, not
+// pairs. Then `from` holds the result and `to` is empty, with the old column's memory for the
+// next call.
 template <class T>
-void scatter_runs(PairArray<T>& from, const std::vector<std::size_t>& runs,
+void scatter_runs(PairArray<T>& from, PairArray<T>& to, const std::vector<std::size_t>& runs,
                   const PairArray<std::uint32_t>& is, std::vector<std::size_t> cursor,
                   std::size_t width) {
     if (from.empty()) {
         return;
     }
-    PairArray<T> to(from.size());
+    to.resize(from.size());
     for (std::size_t r = 0; r + 1 < runs.size(); ++r) {
         const std::size_t begin = runs[r];
         const std::size_t length = runs[r + 1] - begin;
@@ -49,11 +51,12 @@ void scatter_runs(PairArray<T>& from, const std::vector<std::size_t>& runs,
         at += length;
     }
     from.swap(to);
+    to.clear(); // keeps the memory
 }
 
 } // namespace
 
-void group_pairs(PairColumns& columns, std::size_t atoms) {
+void group_pairs(PairColumns& columns, std::size_t atoms, PairColumns& spare) {
     count_offsets(columns, atoms);
     // The search meets each atom's pairs in runs (a cell's atoms against one stencil row at a
     // time), several pairs long: the runs move whole, and i is written from the offsets.
@@ -69,10 +72,10 @@ void group_pairs(PairColumns& columns, std::size_t atoms) {
     }
     runs.push_back(is.size());
     const std::vector<std::size_t> cursor(columns.offsets.begin(), columns.offsets.end() - 1);
-    scatter_runs(columns.j, runs, is, cursor, 1);
-    scatter_runs(columns.shifts, runs, is, cursor, 3);
-    scatter_runs(columns.distances, runs, is, cursor, 1);
-    scatter_runs(columns.vectors, runs, is, cursor, 3);
+    scatter_runs(columns.j, spare.j, runs, is, cursor, 1);
+    scatter_runs(columns.shifts, spare.shifts, runs, is, cursor, 3);
+    scatter_runs(columns.distances, spare.distances, runs, is, cursor, 1);
+    scatter_runs(columns.vectors, spare.vectors, runs, is, cursor, 3);
     for (std::size_t a = 0; a < atoms; ++a) {
         std::fill(columns.i.begin() + std::ptrdiff_t(columns.offsets[a]),
                   columns.i.begin() + std::ptrdiff_t(columns.offsets[a + 1]), std::uint32_t(a));

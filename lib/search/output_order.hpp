@@ -12,8 +12,9 @@
 
 namespace tricell::detail {
 
-/// Groups `columns` by i (stable) and fills its offsets for `atoms` atoms.
-void group_pairs(PairColumns& columns, std::size_t atoms);
+/// Groups `columns` by i (stable) and fills its offsets for `atoms` atoms. `spare` is scratch
+/// memory kept between calls (its columns' contents are overwritten).
+void group_pairs(PairColumns& columns, std::size_t atoms, PairColumns& spare);
 
 /// Sorts `columns` (S needed) by i, j, S and fills its offsets for `atoms` atoms.
 void sort_pairs(PairColumns& columns, std::size_t atoms);

@@ -161,7 +161,13 @@ void NeighborSearch::compute(NeighborList& out) const {
         if (s.options.sorted) {
             detail::sort_pairs(columns, s.atom_count);
         } else if (s.options.grouped) {
-            detail::group_pairs(columns, s.atom_count);
+            // The grouping's scratch: the first batch's columns, which a threaded search has
+            // emptied into `columns` by now.
+            std::vector<PairColumns>& scratch = out.thread_columns();
+            if (scratch.empty()) {
+                scratch.emplace_back();
+            }
+            detail::group_pairs(columns, s.atom_count, scratch.front());
         }
         if (!q.shifts) {
             columns.shifts.clear();

@@ -18,6 +18,8 @@ tricell bounds its grid memory by the number of atoms.
 This module only translates arguments: the search, including per-atom and per-pair cutoffs,
 runs in the C++ library.
 """
+import threading
+
 import numpy as np
 
 from ._tricell import NeighborList
@@ -40,6 +42,19 @@ def _result(quantities, columns):
 
 def _empty(quantities):
     return _result(quantities, {q: np.zeros(shape, dtype) for q, (dtype, shape) in _EMPTY.items()})
+
+
+_last_search = threading.local()
+
+
+def _search(key, cutoff):
+    """This thread's NeighborList(cutoff, grouped=True) for `key`, kept from its last call so that
+    repeated calls with the same cutoff reuse the list's memory (one per thread: the last)."""
+    last = getattr(_last_search, "value", None)
+    if last is None or last[0] != key:
+        last = (key, NeighborList(cutoff, grouped=True))
+        _last_search.value = last
+    return last[1]
 
 
 def _species_table(cutoff):
@@ -87,7 +102,7 @@ def primitive_neighbor_list(quantities, pbc, cell, positions, cutoff, numbers=No
         table = _species_table(cutoff)
         if not table:
             return _empty(quantities)
-        search = NeighborList(table, grouped=True)
+        search = _search(("species", tuple(sorted(table.items()))), table)
         extra = {"species": np.asarray(numbers)}
         # An atom and itself (d = 0) count when its element pair with itself has a cutoff.
         has_self = np.array([table.get((z, z), 0) > 0 for z in np.asarray(numbers).tolist()],
@@ -95,11 +110,11 @@ def primitive_neighbor_list(quantities, pbc, cell, positions, cutoff, numbers=No
     elif np.isscalar(cutoff):
         if not cutoff > 0:
             return _empty(quantities)  # ASE keeps d < cutoff: nothing for a cutoff <= 0
-        search = NeighborList(float(cutoff), grouped=True)
+        search = _search(("cutoff", float(cutoff)), float(cutoff))
         extra = {}
         has_self = np.ones(len(positions), dtype=bool)
     else:
-        search = NeighborList(None, grouped=True)
+        search = _search(("radii",), None)
         extra = {"radii": np.asarray(cutoff, dtype=float)}
         has_self = extra["radii"] > 0
     # Views of the list's buffers (copy=False): each column is copied once, into ASE's dtype.
