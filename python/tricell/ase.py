@@ -1,5 +1,6 @@
 """Drop-in replacements for ase.neighborlist.neighbor_list, primitive_neighbor_list and
-first_neighbors, computed by tricell.
+first_neighbors, and for the classes NeighborList, PrimitiveNeighborList and
+NewPrimitiveNeighborList, computed by tricell.
 
     from tricell.ase import neighbor_list
     i, j, d, D, S = neighbor_list("ijdDS", atoms, 5.0)
@@ -15,14 +16,27 @@ atom, in the order tricell's search found them); the grouping is one counting pa
 library, so the drop-in costs about what the search costs. max_nbins is accepted and ignored:
 tricell bounds its grid memory by the number of atoms.
 
+The classes (defined in tricell._ase_classes, whose doc has the details) take ASE's
+arguments and return ASE's neighbours after every rebuild: the same (index, offset) set for each
+atom, int64 indices (k,) and offsets (k, 3), the same half-list orientation without bothways;
+sorted=True orders each atom's neighbours by index, then offset. update() rebuilds by the
+library's Verlet rule (tricell.DisplacementTracker) rather than ASE's: when some atom moved by
+more than skin - eps * max(cutoffs) since the build (minimum image in the build's frame, eps
+the cell's strain; skin for an unchanged cell, as in ASE), or pbc, the atom count or the atomic
+numbers changed. A changed cell alone, or atoms wrapped into the cell, need not rebuild (ASE
+rebuilds); between rebuilds the neighbours are the build's candidates, offsets following atoms
+that jumped by a lattice vector, and contain every pair within the real cutoffs.
+
 This module only translates arguments: the search, including per-atom and per-pair cutoffs,
 runs in the C++ library.
 """
 import numpy as np
 
-from ._tricell import NeighborList
+from ._ase_classes import NeighborList, NewPrimitiveNeighborList, PrimitiveNeighborList
+from ._tricell import NeighborList as _Search
 
-__all__ = ["neighbor_list", "primitive_neighbor_list", "first_neighbors"]
+__all__ = ["neighbor_list", "primitive_neighbor_list", "first_neighbors", "NeighborList",
+           "PrimitiveNeighborList", "NewPrimitiveNeighborList"]
 
 _EMPTY = {
     "i": (np.int64, (0,)),
@@ -87,7 +101,7 @@ def primitive_neighbor_list(quantities, pbc, cell, positions, cutoff, numbers=No
         table = _species_table(cutoff)
         if not table:
             return _empty(quantities)
-        search = NeighborList(table, grouped=True)
+        search = _Search(table, grouped=True)
         extra = {"species": np.asarray(numbers)}
         # An atom and itself (d = 0) count when its element pair with itself has a cutoff.
         has_self = np.array([table.get((z, z), 0) > 0 for z in np.asarray(numbers).tolist()],
@@ -95,11 +109,11 @@ def primitive_neighbor_list(quantities, pbc, cell, positions, cutoff, numbers=No
     elif np.isscalar(cutoff):
         if not cutoff > 0:
             return _empty(quantities)  # ASE keeps d < cutoff: nothing for a cutoff <= 0
-        search = NeighborList(float(cutoff), grouped=True)
+        search = _Search(float(cutoff), grouped=True)
         extra = {}
         has_self = np.ones(len(positions), dtype=bool)
     else:
-        search = NeighborList(None, grouped=True)
+        search = _Search(None, grouped=True)
         extra = {"radii": np.asarray(cutoff, dtype=float)}
         has_self = extra["radii"] > 0
     found = search.compute(positions, complete_cell(cell), pbc, needed, **extra)
