@@ -169,6 +169,31 @@ def test_neighbor_list_class_matches_ase(seed, primitive):
         np.testing.assert_array_equal(sparse.toarray(), dense, err_msg=context)
 
 
+@pytest.mark.parametrize("seed", range(16))
+@pytest.mark.parametrize("name, mine_class, ase_class", CLASSES, ids=[c[0] for c in CLASSES])
+def test_zero_cell_rows_on_open_axes(seed, name, mine_class, ase_class):
+    """A cell with zero rows along open axes is completed, as ASE's NeighborList completes it
+    before calling a primitive class: the pairs are the brute-force ones and ASE's class's
+    given the completed cell (ASE's new class given the zero rows misses some)."""
+    from ase.geometry import complete_cell
+
+    rng = np.random.default_rng(3000 + seed)
+    pbc = ALL_PBC[seed % 7]  # not all periodic
+    cell = np.eye(3) * rng.uniform(1.5, 3.0) + rng.normal(0, 0.4, (3, 3))
+    cell[~np.array(pbc)] = 0
+    n = int(rng.integers(1, 7))
+    positions = rng.uniform(0, 1, (n, 3)) @ complete_cell(cell)
+    cutoffs = rng.uniform(0.3, 1.5, n)
+    mine = mine_class(cutoffs, skin=0.0, bothways=True, self_interaction=False)
+    mine.update(pbc, cell, positions)
+    found = {(a, j, tuple(s)) for a in range(n)
+             for j, s in zip(*[c.tolist() for c in mine.get_neighbors(a)])}
+    assert found == brute_force_pairs(pbc, complete_cell(cell), positions, cutoffs)
+    theirs = ase_class(cutoffs, skin=0.0, bothways=True, self_interaction=False)
+    theirs.update(pbc, complete_cell(cell), positions)
+    assert sets(mine, n) == sets(theirs, n)
+
+
 def test_ase_classes_given_as_primitive_are_replaced():
     nl = tricell.ase.NeighborList([1.0], primitive=ase_nl.NewPrimitiveNeighborList)
     assert isinstance(nl.nl, tricell.ase.NewPrimitiveNeighborList)

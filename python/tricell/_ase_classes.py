@@ -23,7 +23,9 @@ the atomic numbers change, and otherwise only when the rule says so: a changed c
 by itself force a rebuild (it shrinks the budget by eps * max(r)), and wrapping atoms into the
 cell or moving them by a lattice vector does not count as motion.
 
-Other differences: each pair appears once in an atom's list (ASE's PrimitiveNeighborList
+Other differences: a cell with zero rows along open axes is completed, as ASE's NeighborList
+completes it before calling a primitive class (ASE's NewPrimitiveNeighborList given the zero
+rows itself misses pairs); each pair appears once in an atom's list (ASE's PrimitiveNeighborList
 repeats the self pair with bothways=True, and pairs with a higher index with sorted=True and
 bothways=True); sorted=True orders every atom's neighbours by index, then offset;
 nneighbors and npbcneighbors count the pairs of the half list (and those with a nonzero
