@@ -418,6 +418,41 @@ def test_tracker_arguments_and_rule():
     assert tracker.needs_rebuild(x, box, [True, True, False])
 
 
+@pytest.mark.parametrize("calculator", ["lj", "emt"])
+def test_ase_calculators_with_tricell_classes(calculator, monkeypatch):
+    """ASE's LJ and EMT calculators, whose modules bind ase.neighborlist.NeighborList, give
+    the same energies, forces and stress along an MD-like trajectory with tricell's class."""
+    import importlib
+
+    from ase.build import bulk
+
+    module = importlib.import_module("ase.calculators." + calculator)
+    rng = np.random.default_rng(7)
+    atoms = bulk("Cu", "fcc", a=3.6, cubic=True) * (2, 2, 2)
+    atoms.rattle(0.05, seed=3)
+    results = {}
+    for which in ["ase", "tricell"]:
+        if which == "tricell":
+            monkeypatch.setattr(module, "NeighborList", tricell.ase.NeighborList)
+        calc = module.LennardJones(sigma=2.3, rc=5.0) if calculator == "lj" else module.EMT()
+        trajectory = atoms.copy()
+        trajectory.calc = calc
+        values = []
+        for step in range(12):
+            trajectory.positions += rng.normal(0, 0.03, trajectory.positions.shape)
+            if step == 6:
+                trajectory.set_cell(trajectory.cell * 1.01, scale_atoms=True)
+            values.append((trajectory.get_potential_energy(), trajectory.get_forces(),
+                           trajectory.get_stress()))
+        assert isinstance(calc.nl, tricell.ase.NeighborList) == (which == "tricell")
+        results[which] = values
+        rng = np.random.default_rng(7)
+    for (e0, f0, s0), (e1, f1, s1) in zip(results["ase"], results["tricell"]):
+        assert e1 == pytest.approx(e0, rel=1e-10, abs=1e-10)
+        np.testing.assert_allclose(f1, f0, rtol=1e-9, atol=1e-10)
+        np.testing.assert_allclose(s1, s0, rtol=1e-9, atol=1e-10)
+
+
 # -- ASE's own tests -----------------------------------------------------------------------------
 
 
