@@ -3,7 +3,8 @@ own classes in the same process: builds over seeded random systems (every period
 skewed cells, per-atom cutoffs, every combination of bothways, self_interaction and sorted),
 trajectories of updates (rebuild decisions against an independent brute-force check of the
 rule, completeness against a fresh brute-force pair list, equality with ASE after each
-rebuild), connectivity matrices, errors, and ASE's own test file run with tricell's classes."""
+rebuild), connectivity matrices, errors, ASE's calculators and ASE's own test files run
+with tricell's classes."""
 import importlib.util
 import itertools
 import os
@@ -22,8 +23,8 @@ FLAGS = list(itertools.product([False, True], repeat=3))  # bothways, self_inter
 CLASSES = [("Primitive", tricell.ase.PrimitiveNeighborList, ase_nl.PrimitiveNeighborList),
            ("NewPrimitive", tricell.ase.NewPrimitiveNeighborList,
             ase_nl.NewPrimitiveNeighborList)]
-ASE_TEST_FILE = os.path.join(os.path.dirname(ase_nl.__file__), "test", "neighbor",
-                             "test_neighbor.py")
+ASE_TEST_DIR = os.path.join(os.path.dirname(ase_nl.__file__), "test", "neighbor")
+ASE_TEST_FILES = ["test_neighbor.py", "test_neighbor_initialization.py"]
 
 
 def system(seed, atoms=None):
@@ -467,28 +468,31 @@ def counting(cls, counts):
 
 
 def ase_tests():
-    """The names of the test functions of ASE's test file."""
-    with open(ASE_TEST_FILE) as f:
-        return re.findall(r"^def (test_\w+)", f.read(), re.M)
+    """(file, test function) of ASE's test files of its neighbour-list classes."""
+    found = []
+    for name in ASE_TEST_FILES:
+        with open(os.path.join(ASE_TEST_DIR, name)) as f:
+            found += [(name, test) for test in re.findall(r"^def (test_\w+)", f.read(), re.M)]
+    return found
 
 
 @pytest.mark.filterwarnings("ignore::pytest.PytestUnknownMarkWarning")  # its mark "slow"
 @pytest.mark.filterwarnings("ignore:the matrix subclass")
-@pytest.mark.parametrize("test_name", ase_tests())
-def test_ase_test_file_with_tricell_classes(test_name, monkeypatch):
-    """Each test function of ASE's test_neighbor.py, run with ase.neighborlist's classes
-    replaced by tricell's (counted, so that a test that built none fails)."""
+@pytest.mark.parametrize("file_name, test_name", ase_tests())
+def test_ase_test_files_with_tricell_classes(file_name, test_name, monkeypatch):
+    """Each test function of ASE's test files, run with ase.neighborlist's classes replaced
+    by tricell's (counted, so that a test that built none fails)."""
     counts = {"NeighborList": 0, "PrimitiveNeighborList": 0, "NewPrimitiveNeighborList": 0}
     patched = {name: counting(getattr(tricell.ase, name), counts) for name in counts}
     for name, cls in patched.items():
         monkeypatch.setattr(ase_nl, name, cls)
-    # The file imports the classes by name from ase.neighborlist, so it binds the patched ones.
-    spec = importlib.util.spec_from_file_location("_ase_test_neighbor_" + test_name,
-                                                  ASE_TEST_FILE)
+    # The files import the classes by name from ase.neighborlist, so they bind the patched ones.
+    spec = importlib.util.spec_from_file_location("_ase_" + test_name,
+                                                  os.path.join(ASE_TEST_DIR, file_name))
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
     for name, cls in patched.items():
-        assert getattr(module, name) is cls
+        assert getattr(module, name, cls) is cls
     np.random.seed(42)  # test_supercell draws from numpy's global generator
     getattr(module, test_name)()
     assert sum(counts.values()) > 0, f"{test_name} built no tricell list: {counts}"
