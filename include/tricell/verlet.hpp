@@ -7,12 +7,9 @@
 // candidates down to the pairs with |D| < r_c for the current positions and box, with fresh S,
 // d and D, in buffers that survive between calls. Otherwise it rebuilds first (and says so).
 //
-// The rebuild rule (DisplacementTracker, include/tricell/displacement.hpp, which also says why it
-// is safe): rebuild when some atom has moved more than (skin - eps r_c) / 2 since the build in the
-// build frame (skin / 2 while the box is unchanged), eps the box's strain since the build, or the
-// atom count or periodicity changed. Wrapping positions into the box, or moving an atom by a
-// whole lattice vector, triggers no rebuild; the refreshed image shift S' = S + m_j - m_i (m the
-// tracker's jumps) keeps S relative to the caller's positions as given.
+// The rebuild rule is DisplacementTracker's (include/tricell/displacement.hpp: the rule, why it
+// is safe, why displacements are fractional); the refreshed image shift S' = S + m_j - m_i, m the
+// tracker's jumps, keeps S relative to the caller's positions as given.
 //
 // Cost model. A build costs C_b (the search at r_l), every step costs C_f (the displacement check
 // plus filtering the candidates, whose number grows as r_l^3), and the list survives about
@@ -27,7 +24,6 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
