@@ -22,7 +22,8 @@ from ._tricell import (DisplacementTracker, NeighborList, Rdf, VerletList, _read
                        nearest_neighbors)
 
 __all__ = [
-    "NeighborList", "VerletList", "DisplacementTracker", "Rdf", "nearest_neighbors", "Structure", "read", "backends",
+    "NeighborList", "VerletList", "DisplacementTracker", "Rdf", "nearest_neighbors", "Structure",
+    "read", "backends",
 ]
 
 

@@ -18,8 +18,8 @@ rebuild the neighbours are those of ASE's class rebuilt at the same positions (t
 (index, offset) per atom, the same half-list orientation).
 
 Where rebuilds differ from ASE's: ASE rebuilds on any change of the cell or pbc and when an
-atom's Cartesian coordinates moved more than skin; tricell rebuilds when pbc, the atom count or
-the atomic numbers change, and otherwise only when the rule says so: a changed cell does not
+atom's Cartesian coordinates moved more than skin; tricell rebuilds when pbc or the atomic
+numbers (numbers=) change, and otherwise only when the rule says so: a changed cell does not
 by itself force a rebuild (it shrinks the budget by eps * max(r)), and wrapping atoms into the
 cell or moving them by a lattice vector does not count as motion.
 

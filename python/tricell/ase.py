@@ -22,8 +22,8 @@ atom, int64 indices (k,) and offsets (k, 3), the same half-list orientation with
 sorted=True orders each atom's neighbours by index, then offset. update() rebuilds by the
 library's Verlet rule (tricell.DisplacementTracker) rather than ASE's: when some atom moved by
 more than skin - eps * max(cutoffs) since the build (minimum image in the build's frame, eps
-the cell's strain; skin for an unchanged cell, as in ASE), or pbc, the atom count or the atomic
-numbers changed. A changed cell alone, or atoms wrapped into the cell, need not rebuild (ASE
+the cell's strain; skin for an unchanged cell, as in ASE), or pbc or the atomic numbers
+changed. A changed cell alone, or atoms wrapped into the cell, need not rebuild (ASE
 rebuilds); between rebuilds the neighbours are the build's candidates, offsets following atoms
 that jumped by a lattice vector, and contain every pair within the real cutoffs.
 
