@@ -4,11 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <numeric>
 #include <type_traits>
-
-#include <Eigen/SVD>
 
 #include "tricell/error.hpp"
 
@@ -22,35 +19,6 @@ constexpr double pi = 3.14159265358979323846;
 // the displacements can never drop a candidate the rule relies on.
 constexpr double candidate_margin = 1e-10;
 constexpr double coordinate_margin = 1e-13;
-// Fractional displacements beyond this are not tracked (their jump would not fit an int); such
-// an atom forces a rebuild, where the search reports the position.
-constexpr double max_tracked = 1e9;
-
-// eps = max(0, ||H0 H^-1|| - 1): how much a pair vector in the current box can grow when mapped
-// back to the build box. Exactly 0 for an unchanged box.
-double box_growth(const Box& built, const Box& box) {
-    if (built.matrix() == box.matrix()) {
-        return 0;
-    }
-    const Eigen::Matrix3d m = built.matrix() * box.inverse();
-    const double norm = Eigen::JacobiSVD<Eigen::Matrix3d>(m).singularValues()[0];
-    return std::max(0.0, norm - 1);
-}
-
-void check_finite(PointsView positions, std::size_t i) {
-    const Eigen::Vector3d r = positions[i];
-    if (!r.allFinite()) {
-        detail::fail<InvalidArgument>("position ", i, " is not finite (got ", r.x(), ", ", r.y(),
-                                      ", ", r.z(), ")");
-    }
-}
-
-void check_view(PointsView positions) {
-    if (positions.size() > 0 && positions.data == nullptr) {
-        detail::fail<InvalidArgument>("positions: null data for ", positions.size(), " points");
-    }
-}
-
 } // namespace
 
 void VerletOptions::validate() const {
@@ -73,8 +41,7 @@ VerletList::VerletList(const VerletOptions& options) : options_(options) {
 }
 
 void VerletList::reset() {
-    build_box_.reset();
-    atom_count_ = 0;
+    tracker_.reset();
     candidate_offsets_.clear();
     candidate_j_.clear();
     candidate_shift_.clear();
@@ -86,107 +53,30 @@ void VerletList::clear_pairs() {
     pairs_.clear();
 }
 
-bool VerletList::compatible(const Box& box, PointsView positions) const {
-    return build_box_.has_value() && positions.size() == atom_count_ &&
-           box.periodicity() == build_box_->periodicity();
-}
-
 double VerletList::displacement_budget(const Box& box) const {
-    if (!build_box_ || box.periodicity() != build_box_->periodicity()) {
-        return -std::numeric_limits<double>::infinity();
-    }
-    return 0.5 * (options_.skin - box_growth(*build_box_, box) * options_.neighbors.cutoff);
-}
-
-double VerletList::track(const Box& box, PointsView positions, double stop_above, bool exact,
-                         std::int32_t* jumps, double* unwrapped) const {
-    const Box& built = *build_box_;
-    const Eigen::Matrix3d& h0 = built.matrix();
-    const Eigen::Matrix3d& h = box.matrix();
-    const Eigen::Matrix3d& h_inv = box.inverse();
-    const Periodicity& pbc = built.periodicity();
-    const double stop_above_sq = stop_above * stop_above;
-    double max_sq = 0;
-    for (std::size_t i = 0; i < atom_count_; ++i) {
-        check_finite(positions, i);
-        const Eigen::Vector3d x = positions[i];
-        // u = s - s0; the jump m cancels its integer part along periodic axes.
-        const Eigen::Vector3d u = h_inv * x - Eigen::Map<const Eigen::Vector3d>(&reference_[3 * i]);
-        if (!(u.cwiseAbs().maxCoeff() < max_tracked)) {
-            return std::numeric_limits<double>::infinity();
-        }
-        Eigen::Vector3d m = Eigen::Vector3d::Zero();
-        for (int k = 0; k < 3; ++k) {
-            if (pbc[k]) {
-                m[k] = -std::nearbyint(u[k]);
-            }
-        }
-        Eigen::Vector3d delta = h0 * (u + m);
-        double delta_sq = delta.squaredNorm();
-        if ((exact || delta_sq > stop_above_sq) && pbc.any()) {
-            // Rounding the fractional components is not always the shortest translate in a
-            // skewed box; the exact minimum image decides before the atom counts as moved.
-            // (Below the budget the rounded translate is good enough: the bound holds for any
-            // jump, and the shortest one is shorter still.)
-            const MinimumImage mi = built.minimum_image(Cartesian(delta));
-            m += mi.shift.cast<double>();
-            delta = mi.vector;
-            delta_sq = delta.squaredNorm();
-        }
-        max_sq = std::max(max_sq, delta_sq);
-        if (max_sq > stop_above_sq) {
-            return std::sqrt(max_sq);
-        }
-        if (jumps != nullptr) {
-            const Eigen::Vector3d r = x + h * m;
-            for (int k = 0; k < 3; ++k) {
-                jumps[3 * i + std::size_t(k)] = static_cast<std::int32_t>(m[k]);
-                unwrapped[3 * i + std::size_t(k)] = r[k];
-            }
-        }
-    }
-    return std::sqrt(max_sq);
+    return tracker_.budget(box, options_.skin, options_.neighbors.cutoff);
 }
 
 double VerletList::max_displacement(const Box& box, PointsView positions) const {
-    check_view(positions);
-    if (!compatible(box, positions)) {
-        return std::numeric_limits<double>::infinity();
-    }
-    return track(box, positions, std::numeric_limits<double>::infinity(), true, nullptr, nullptr);
+    return tracker_.max_displacement(box, positions);
 }
 
 bool VerletList::needs_rebuild(const Box& box, PointsView positions) const {
     options_.validate();
-    check_view(positions);
-    if (!compatible(box, positions)) {
-        for (std::size_t i = 0; i < positions.size(); ++i) {
-            check_finite(positions, i);
-        }
-        return true;
-    }
-    const double budget = displacement_budget(box);
-    if (budget < 0) {
-        for (std::size_t i = 0; i < positions.size(); ++i) {
-            check_finite(positions, i);
-        }
-        return true;
-    }
-    return track(box, positions, budget, false, nullptr, nullptr) > budget;
+    return tracker_.needs_rebuild(box, positions, options_.skin, options_.neighbors.cutoff);
 }
 
 bool VerletList::update(const Box& box, PointsView positions) {
     try {
         options_.validate();
-        check_view(positions);
         clear_pairs();
         bool rebuilt = true;
-        if (compatible(box, positions)) {
+        if (tracker_.compatible(box, positions)) {
             const double budget = displacement_budget(box);
-            jumps_.resize(3 * atom_count_);
-            unwrapped_.resize(3 * atom_count_);
-            rebuilt = budget < 0 || track(box, positions, budget, false, jumps_.data(),
-                                          unwrapped_.data()) > budget;
+            jumps_.resize(3 * tracker_.atom_count());
+            unwrapped_.resize(3 * tracker_.atom_count());
+            rebuilt = budget < 0 || tracker_.track(box, positions, budget, false, jumps_.data(),
+                                                   unwrapped_.data()) > budget;
         }
         if (rebuilt) {
             build(box, positions);
@@ -204,7 +94,6 @@ bool VerletList::update(const Box& box, PointsView positions) {
 void VerletList::rebuild(const Box& box, PointsView positions) {
     try {
         options_.validate();
-        check_view(positions);
         clear_pairs();
         build(box, positions);
         refresh(box);
@@ -215,7 +104,7 @@ void VerletList::rebuild(const Box& box, PointsView positions) {
 }
 
 void VerletList::build(const Box& box, PointsView positions) {
-    build_box_.reset();
+    tracker_.reset();
     NeighborOptions search_options = options_.neighbors;
     double scale = box.matrix().cwiseAbs().maxCoeff();
     for (std::size_t i = 0; i < positions.size(); ++i) {
@@ -236,20 +125,10 @@ void VerletList::build(const Box& box, PointsView positions) {
     // to them, S0 = S + image_j - image_i, which keeps the shifts small (within the reach of
     // r_l) however far outside the box the caller's positions are.
     const std::size_t n = positions.size();
-    atom_count_ = n;
-    reference_.resize(3 * n);
     jumps_.resize(3 * n);
     unwrapped_.resize(3 * n);
-    const Eigen::Matrix3d& h = box.matrix();
-    for (std::size_t i = 0; i < n; ++i) {
-        const WrappedFractional w = box.wrap(box.to_fractional(Cartesian(positions[i])));
-        const Eigen::Vector3d r = Eigen::Vector3d(positions[i]) - h * w.image.cast<double>();
-        for (std::size_t k = 0; k < 3; ++k) {
-            reference_[3 * i + k] = w.wrapped[int(k)];
-            jumps_[3 * i + k] = -w.image[int(k)]; // this update's m: x + H m is the reference
-            unwrapped_[3 * i + k] = r[int(k)];
-        }
-    }
+    // This update's m = -image: x + H m is the reference.
+    tracker_.record(box, positions, jumps_.data(), unwrapped_.data());
 
     // S0 of every candidate, the dense table of the shifts that occur, then the candidates
     // grouped by i (counting sort).
@@ -301,7 +180,6 @@ void VerletList::build(const Box& box, PointsView positions) {
     }
     raw_.clear();
 
-    build_box_ = box;
     ++rebuild_count_;
     updates_since_build_ = 0;
 }
@@ -382,7 +260,7 @@ void VerletList::refresh(const Box& box) {
         shift_box_ = h;
     }
     const Quantities& q = options_.neighbors.quantities;
-    const std::size_t n = atom_count_;
+    const std::size_t n = tracker_.atom_count();
     const std::size_t capacity = candidate_j_.size();
     PairColumns& columns = pairs_.columns();
     columns.i.resize(capacity);

@@ -7,6 +7,7 @@
 #include "tricell/batch.hpp"
 #include "tricell/box.hpp"
 #include "tricell/cell_list.hpp"
+#include "tricell/displacement.hpp"
 #include "tricell/error.hpp"
 #include "tricell/grid.hpp"
 #include "tricell/neighbor_list.hpp"

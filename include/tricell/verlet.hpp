@@ -7,32 +7,9 @@
 // candidates down to the pairs with |D| < r_c for the current positions and box, with fresh S,
 // d and D, in buffers that survive between calls. Otherwise it rebuilds first (and says so).
 //
-// Why the rule is safe. Let s0 be the fractional build positions in the build box H0, and s the
-// current ones in the current box H. For each atom the tracker picks an integer jump m_i and
-// measures its displacement in the build frame, delta_i = H0 (s_i + m_i - s0_i). A current pair
-// (i, j, S') maps to the candidate (i, j, S' - m_j + m_i), whose build-time vector is
-//     D0 = H0 H^-1 D - delta_j + delta_i,   so   |D0| <= ||H0 H^-1|| |D| + |delta_i| + |delta_j|,
-// with ||.|| the spectral norm. If every |delta| <= (skin - eps r_c) / 2, where
-// eps = max(0, ||H0 H^-1|| - 1) <= ||(H0 - H) H^-1|| (the box's strain since the build), then
-// |D| < r_c implies |D0| < r_c + skin: the pair was a candidate. That is the rebuild rule:
-// needs_rebuild() is true when some atom has moved more than (skin - eps r_c) / 2 since the build
-// (skin / 2 while the box is unchanged), or the atom count or periodicity changed. The bound holds
-// for ANY choice of the integers m_i, so wrapping never matters for correctness; the tracker takes
-// the m_i that make delta_i the minimum image in the build box (fractional rounding, then
-// Box::minimum_image when rounding is not short enough), so a caller who wraps positions into the
-// box between calls, or moves an atom by a whole lattice vector, does not trigger a rebuild, and a
-// real move is never hidden: delta_i is the shortest way the atom could have got there. The
-// refreshed image shift is S' = S + m_j - m_i, so S stays relative to the caller's positions as
-// given.
-//
-// Why displacements are taken in fractional coordinates. When the box deforms (NPT, shear) and
-// the caller moves the atoms with it (s fixed, the usual affine remap), delta is zero: the
-// whole box change enters through eps alone, a bound on how much any pair vector, through any
-// image, can shrink (|D0| <= (1 + eps) |D|, whatever the pair's shift or how far the atoms are
-// from the origin). Cartesian displacements would instead grow with the distance from the
-// origin (|dH s| <= ||dH|| |s|) and trigger rebuilds for a mere change of box. A caller who
-// changes the box but keeps Cartesian positions still gets exact lists; the non-affine part
-// then counts as displacement.
+// The rebuild rule is DisplacementTracker's (include/tricell/displacement.hpp: the rule, why it
+// is safe, why displacements are fractional); the refreshed image shift S' = S + m_j - m_i, m the
+// tracker's jumps, keeps S relative to the caller's positions as given.
 //
 // Cost model. A build costs C_b (the search at r_l), every step costs C_f (the displacement check
 // plus filtering the candidates, whose number grows as r_l^3), and the list survives about
@@ -47,12 +24,12 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
 
 #include "tricell/box.hpp"
+#include "tricell/displacement.hpp"
 #include "tricell/export.hpp"
 #include "tricell/neighbor_list.hpp"
 #include "tricell/types.hpp"
@@ -137,25 +114,15 @@ class TRICELL_API VerletList {
     std::size_t updates_since_build() const { return updates_since_build_; }
 
   private:
-    // Tracks every atom against the build: checks finiteness, picks its jump m_i and measures
-    // delta_i. Returns the largest |delta_i|, stopping early above `stop_above`. The jump is the
-    // rounded fractional displacement unless that leaves |delta_i| above `stop_above` (or
-    // always, when `exact`): then the exact minimum image. With non-null `jumps` (3 per atom)
-    // and `unwrapped` (x + H m, 3 per atom) it records them.
-    double track(const Box& box, PointsView positions, double stop_above, bool exact,
-                 std::int32_t* jumps, double* unwrapped) const;
-    bool compatible(const Box& box, PointsView positions) const;
     void build(const Box& box, PointsView positions);
     void refresh(const Box& box);
     void clear_pairs();
 
     VerletOptions options_;
 
-    // The build: box, wrapped fractional positions s0 (3 per atom), candidates by i (CSR) with
+    // The build: the tracker (box, wrapped fractional positions s0), candidates by i (CSR) with
     // an index into a dense table of their shifts S0 relative to the wrapped build positions.
-    std::optional<Box> build_box_;
-    std::size_t atom_count_ = 0;
-    std::vector<double> reference_;
+    DisplacementTracker tracker_;
     NeighborList raw_;
     std::vector<std::size_t> candidate_offsets_;
     PairArray<std::uint32_t> candidate_j_;

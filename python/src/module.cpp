@@ -16,6 +16,7 @@ namespace tricell::python {
 namespace py = pybind11;
 
 void bind_neighbors(py::module_& m);
+void bind_displacement(py::module_& m);
 void bind_read(py::module_& m);
 void bind_analysis(py::module_& m);
 
@@ -52,6 +53,7 @@ PYBIND11_MODULE(_tricell, m) {
         },
         "The names backend= takes, \"auto\" first, from the library's table of backends.");
     tricell::python::bind_neighbors(m);
+    tricell::python::bind_displacement(m);
     tricell::python::bind_read(m);
     tricell::python::bind_analysis(m);
 }

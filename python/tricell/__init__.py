@@ -1,9 +1,9 @@
 """tricell: periodic neighbour search in general triclinic boxes.
 
 The native part (tricell._tricell, a pybind11 module over the C++ library) provides
-NeighborList, VerletList, Rdf, nearest_neighbors and read(); tricell.ase and
-tricell.pymatgen are drop-in replacements for ASE's and pymatgen's neighbour-list functions
-built on it.
+NeighborList, VerletList, DisplacementTracker (the Verlet rebuild rule on its own), Rdf,
+nearest_neighbors and read(); tricell.ase and tricell.pymatgen are drop-in replacements for
+ASE's and pymatgen's neighbour-list functions (and ASE's neighbour-list classes) built on it.
 
     import tricell
     nl = tricell.NeighborList(cutoff=5.0)
@@ -18,10 +18,12 @@ from typing import List, NamedTuple, Tuple
 
 import numpy as np
 
-from ._tricell import NeighborList, Rdf, VerletList, __version__, _read, backends, nearest_neighbors
+from ._tricell import (DisplacementTracker, NeighborList, Rdf, VerletList, __version__, _read,
+                       backends, nearest_neighbors)
 
 __all__ = [
-    "NeighborList", "VerletList", "Rdf", "nearest_neighbors", "Structure", "read", "backends",
+    "NeighborList", "VerletList", "DisplacementTracker", "Rdf", "nearest_neighbors", "Structure",
+    "read", "backends",
 ]
 
 

@@ -1,5 +1,6 @@
 """Drop-in replacements for ase.neighborlist.neighbor_list, primitive_neighbor_list and
-first_neighbors, computed by tricell.
+first_neighbors, and for the classes NeighborList, PrimitiveNeighborList and
+NewPrimitiveNeighborList, computed by tricell.
 
     from tricell.ase import neighbor_list
     i, j, d, D, S = neighbor_list("ijdDS", atoms, 5.0)
@@ -12,8 +13,20 @@ elements not in it never counts; a later key for the same two elements replaces 
 one, as in ASE); self_interaction adds each atom's pair with itself at S = 0, first among
 that atom's pairs. Pairs come grouped by i in ascending order, as ASE promises (within one
 atom, in the order tricell's search found them); the grouping is one counting pass in the
-library, so the drop-in costs about what the search costs. max_nbins is accepted and ignored:
+library, no comparison sort. Each thread keeps its last search, so that repeated calls with
+one cutoff reuse its memory. max_nbins is accepted and ignored:
 tricell bounds its grid memory by the number of atoms.
+
+The classes (defined in tricell._ase_classes, whose doc has the details) take ASE's
+arguments and return ASE's neighbours after every rebuild: the same (index, offset) set for each
+atom, int64 indices (k,) and offsets (k, 3), the same half-list orientation without bothways;
+sorted=True orders each atom's neighbours by index, then offset. update() rebuilds by the
+library's Verlet rule (tricell.DisplacementTracker) rather than ASE's: when some atom moved by
+more than skin - eps * max(cutoffs) since the build (minimum image in the build's frame, eps
+the cell's strain; skin for an unchanged cell, as in ASE), or pbc or the atomic numbers
+changed. A changed cell alone, or atoms wrapped into the cell, need not rebuild (ASE
+rebuilds); between rebuilds the neighbours are the build's candidates, offsets following atoms
+that jumped by a lattice vector, and contain every pair within the real cutoffs.
 
 This module only translates arguments: the search, including per-atom and per-pair cutoffs,
 runs in the C++ library.
@@ -22,9 +35,11 @@ import threading
 
 import numpy as np
 
-from ._tricell import NeighborList
+from ._ase_classes import NeighborList, NewPrimitiveNeighborList, PrimitiveNeighborList
+from ._tricell import NeighborList as _Search
 
-__all__ = ["neighbor_list", "primitive_neighbor_list", "first_neighbors"]
+__all__ = ["neighbor_list", "primitive_neighbor_list", "first_neighbors", "NeighborList",
+           "PrimitiveNeighborList", "NewPrimitiveNeighborList"]
 
 _EMPTY = {
     "i": (np.int64, (0,)),
@@ -48,11 +63,11 @@ _last_search = threading.local()
 
 
 def _search(key, cutoff):
-    """This thread's NeighborList(cutoff, grouped=True) for `key`, kept from its last call so that
+    """This thread's tricell.NeighborList(cutoff, grouped=True) for `key`, kept from its last call so that
     repeated calls with the same cutoff reuse the list's memory (one per thread: the last)."""
     last = getattr(_last_search, "value", None)
     if last is None or last[0] != key:
-        last = (key, NeighborList(cutoff, grouped=True))
+        last = (key, _Search(cutoff, grouped=True))
         _last_search.value = last
     return last[1]
 
