@@ -88,7 +88,8 @@ cutoff the largest cutoff of a pair (both finite, >= 0). After record() of the b
 needs_rebuild() is true when the candidates may miss a pair within its cutoff: the atom count
 or periodicity changed, or some atom moved (minimum image, in the build's frame) by more than
 budget() = (skin - eps * cutoff) / 2, eps the box's strain since the build (skin / 2 for an
-unchanged box). See include/tricell/displacement.hpp for the rule and why it is safe.
+unchanged box). The bound is safe: a pair within its cutoff now was within cutoff + skin at
+the build.
 Points are N x 3 Cartesian, the box 3 x 3 with lattice vectors as rows, periodic one bool or
 three.)doc")
         .def(py::init<double, double>(), py::arg("skin"), py::arg("cutoff"))
@@ -108,9 +109,12 @@ S + k[j] - k[i]).)doc")
              py::arg("box"), py::arg("periodic") = true,
              "Largest displacement of an atom since the build (inf without a compatible build).")
         .def("reset", &PyDisplacementTracker::reset, "Forgets the build.")
-        .def_property_readonly("recorded", &PyDisplacementTracker::recorded)
-        .def_property_readonly("skin", &PyDisplacementTracker::skin)
-        .def_property_readonly("cutoff", &PyDisplacementTracker::cutoff);
+        .def_property_readonly("recorded", &PyDisplacementTracker::recorded,
+                               "Whether record() has made a build.")
+        .def_property_readonly("skin", &PyDisplacementTracker::skin,
+                               "The list's margin beyond every pair's cutoff.")
+        .def_property_readonly("cutoff", &PyDisplacementTracker::cutoff,
+                               "The largest cutoff of a pair.");
 }
 
 } // namespace tricell::python

@@ -90,7 +90,7 @@ def test_functions_have_the_native_parameters_and_defaults():
         assert stub_parameters(node) == native_parameters(getattr(_tricell, node.name), node.name)
 
 
-@pytest.mark.parametrize("name", ["NeighborList", "VerletList", "Rdf"])
+@pytest.mark.parametrize("name", ["NeighborList", "VerletList", "DisplacementTracker", "Rdf"])
 def test_classes_have_the_native_methods_properties_and_parameters(name):
     class_node = next(n for n in stub_tree().body if isinstance(n, ast.ClassDef) and n.name == name)
     methods, properties = stub_members(class_node)
