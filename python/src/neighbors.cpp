@@ -141,10 +141,10 @@ class PyNeighborList {
                                   std::to_string(xs.size()) + " structures");
         }
         // periodic: one bool or three for every structure, or one of those per structure.
-        const bool per_structure =
-            py::module_::import("numpy").attr("ndim")(periodic).cast<int>() == 2;
-        if (per_structure && py::len(periodic) != xs.size()) {
-            throw py::value_error("periodic has " + std::to_string(py::len(periodic)) +
+        const py::array flags = numpy_array(periodic, "periodic");
+        const bool per_structure = flags.ndim() == 2;
+        if (per_structure && static_cast<std::size_t>(flags.shape(0)) != xs.size()) {
+            throw py::value_error("periodic has " + std::to_string(flags.shape(0)) +
                                   " entries for " + std::to_string(xs.size()) + " structures");
         }
         std::vector<DoubleArray> arrays;
@@ -154,13 +154,15 @@ class PyNeighborList {
         for (std::size_t s = 0; s < xs.size(); ++s) {
             try {
                 arrays.push_back(points_array(xs[s]));
-                const py::object pbc = per_structure ? py::object(periodic.cast<py::sequence>()[s])
-                                                     : py::reinterpret_borrow<py::object>(periodic);
+                const py::object pbc =
+                    per_structure ? py::object(flags[py::int_(s)]) : py::object(flags);
                 structures.push_back(BatchStructure{
-                    box_from_rows(hs[s], pbc),
+                    box_from_rows(hs[s], pbc, "boxes"),
                     PointsView(arrays.back().data(), std::size_t(arrays.back().shape(0)))});
             } catch (const py::value_error& e) {
                 throw py::value_error("structure " + std::to_string(s) + ": " + e.what());
+            } catch (const py::type_error& e) {
+                throw py::type_error("structure " + std::to_string(s) + ": " + e.what());
             } catch (const Error&) {
                 detail::rethrow_for_structure(s);
             }

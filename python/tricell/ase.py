@@ -16,11 +16,13 @@ library, so the drop-in costs about what the search costs. max_nbins is accepted
 tricell bounds its grid memory by the number of atoms.
 
 This module only translates arguments: the search, including per-atom and per-pair cutoffs,
-runs in the C++ library.
+runs in the C++ library. Array arguments follow the native module's rules, with errors naming
+ASE's arguments: positions, cell, pbc, numbers and cutoff (a TypeError for a kind of value that
+is no real number, such as complex, str or object; a ValueError for a wrong shape).
 """
 import numpy as np
 
-from ._tricell import NeighborList
+from ._tricell import NeighborList, _as_array
 
 __all__ = ["neighbor_list", "primitive_neighbor_list", "first_neighbors"]
 
@@ -68,15 +70,25 @@ def primitive_neighbor_list(quantities, pbc, cell, positions, cutoff, numbers=No
     for q in quantities:
         if q not in _EMPTY:
             raise ValueError("Unsupported quantity specified.")
+    positions = _as_array(positions, "positions", "points")
+    cell = _as_array(cell, "cell", "box")
+    pbc = _as_array(pbc, "pbc", "periodic")
+    if not isinstance(cutoff, dict):
+        cutoff = _as_array(cutoff, "cutoff", "real")
+        if cutoff.ndim != 0 and cutoff.shape != (len(positions),):
+            raise ValueError(f"cutoff must be one number or one value per atom, shape "
+                             f"({len(positions)},) (got shape {cutoff.shape})")
+    elif numbers is not None:  # as in ASE, numbers are read only for a dict cutoff
+        numbers = _as_array(numbers, "numbers", "species")
+        if len(numbers) != len(positions):
+            raise ValueError(f"numbers must have one value per atom, shape ({len(positions)},) "
+                             f"(got shape {numbers.shape})")
     if len(positions) == 0:
         return _empty(quantities)
     from ase.geometry import complete_cell
 
-    cell = np.asarray(cell, dtype=float)
-    positions = np.asarray(positions, dtype=float)
     if use_scaled_positions:
         positions = positions @ cell
-    pbc = np.broadcast_to(np.asarray(pbc, dtype=bool), (3,))
 
     needed = "ij" + "".join(q for q in "SdD" if q in quantities)
     if self_interaction:
@@ -88,11 +100,10 @@ def primitive_neighbor_list(quantities, pbc, cell, positions, cutoff, numbers=No
         if not table:
             return _empty(quantities)
         search = NeighborList(table, grouped=True)
-        extra = {"species": np.asarray(numbers)}
+        extra = {"species": numbers}
         # An atom and itself (d = 0) count when its element pair with itself has a cutoff.
-        has_self = np.array([table.get((z, z), 0) > 0 for z in np.asarray(numbers).tolist()],
-                            dtype=bool)
-    elif np.isscalar(cutoff):
+        has_self = np.array([table.get((z, z), 0) > 0 for z in numbers.tolist()], dtype=bool)
+    elif cutoff.ndim == 0:
         if not cutoff > 0:
             return _empty(quantities)  # ASE keeps d < cutoff: nothing for a cutoff <= 0
         search = NeighborList(float(cutoff), grouped=True)
@@ -100,8 +111,8 @@ def primitive_neighbor_list(quantities, pbc, cell, positions, cutoff, numbers=No
         has_self = np.ones(len(positions), dtype=bool)
     else:
         search = NeighborList(None, grouped=True)
-        extra = {"radii": np.asarray(cutoff, dtype=float)}
-        has_self = extra["radii"] > 0
+        extra = {"radii": cutoff}
+        has_self = cutoff > 0
     # Views of the list's buffers (copy=False): each column is copied once, into ASE's dtype.
     found = search.compute(positions, complete_cell(cell), pbc, needed, copy=False, **extra)
     columns = dict(zip(needed, found))
