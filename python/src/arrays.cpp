@@ -98,6 +98,10 @@ py::array numpy_array(const py::handle& value, const char* name) {
     try {
         return py::module_::import("numpy").attr("asarray")(value).cast<py::array>();
     } catch (py::error_already_set& e) {
+        // An interrupt or a failed allocation is no property of the argument: it goes on.
+        if (!e.matches(PyExc_Exception) || e.matches(PyExc_MemoryError)) {
+            throw;
+        }
         if (e.matches(PyExc_ValueError)) {
             throw py::value_error(std::string(name) +
                                   " must be a rectangular array of numbers (got a ragged or "

@@ -290,7 +290,11 @@ both give per-atom offsets (quantity 'o'). threads=0 uses every core; the result
 identical for any thread count. backend ()doc" +
                             quoted_backends() + R"doc() changes only the speed.
 max_pairs refuses a list of more pairs (a batch: in total) before it is allocated, from an
-estimate, or as soon as the stored pairs pass it; 0 = no limit.)doc";
+estimate, or as soon as the stored pairs pass it; 0 = no limit.
+Array arguments take any array-like of real numbers (floats or integers, any byte order, memory
+order or strides; species integers, periodic bools or 0 and 1): another kind of value (bool,
+complex, str, object, datetime, ...) raises TypeError, a wrong shape ValueError, each naming the
+argument with the dtype and shape it got.)doc";
     py::class_<PyNeighborList>(m, "NeighborList", doc.c_str())
         .def(py::init<const py::object&, bool, bool, int, const std::string&, std::size_t, bool>(),
              py::arg("cutoff"), py::arg("full") = true, py::arg("sorted") = false,

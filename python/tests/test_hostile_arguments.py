@@ -320,6 +320,28 @@ def test_a_tensor_that_requires_grad_is_a_type_error_naming_the_argument():
         np.testing.assert_array_equal(mine, theirs)
 
 
+class Raising:
+    """An array-like whose __array__ raises `error`."""
+
+    def __init__(self, error):
+        self.error = error
+
+    def __array__(self, dtype=None):
+        raise self.error
+
+
+def test_an_array_like_that_fails_to_convert_is_an_error_naming_the_argument():
+    nl = tricell.NeighborList(1.8)
+    with pytest.raises(TypeError, match=r"^box cannot be converted to a numpy array \(got "
+                                        r"Raising: no array today\)$"):
+        nl.compute(P, Raising(RuntimeError("no array today")))
+    with pytest.raises(ValueError, match=r"^points must be a rectangular array of numbers"):
+        nl.compute(Raising(ValueError("bad")), B)
+    # A failed allocation (or an interrupt) is no fault of the argument: it is not translated.
+    with pytest.raises(MemoryError, match="^out of memory$"):
+        nl.compute(Raising(MemoryError("out of memory")), B)
+
+
 if __name__ == "__main__":
     totals = collections.Counter()
     for case in CASES:
