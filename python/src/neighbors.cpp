@@ -27,13 +27,23 @@ namespace tricell::python {
 
 namespace {
 
+// repr(value), at most 80 characters, or its type's name when repr itself fails.
+std::string described(const py::handle& value) {
+    try {
+        const std::string text = py::repr(value).cast<std::string>();
+        return text.size() > 80 ? text.substr(0, 77) + "..." : text;
+    } catch (const py::error_already_set&) {
+        return std::string("a ") + Py_TYPE(value.ptr())->tp_name;
+    }
+}
+
 // `value` as a sequence (a list, a tuple, an array of one more dimension), else ValueError.
 py::sequence checked_sequence(const py::handle& value, const char* name) {
     if (!py::isinstance<py::sequence>(value) || py::isinstance<py::str>(value)) {
         throw py::value_error(std::string(name) +
                               " must be a sequence with one entry per "
                               "structure (got " +
-                              py::repr(value).cast<std::string>() + ")");
+                              described(value) + ")");
     }
     return py::reinterpret_borrow<py::sequence>(value);
 }
@@ -138,14 +148,15 @@ class PyNeighborList {
         const py::sequence hs = checked_sequence(boxes, "boxes");
         if (hs.size() != xs.size()) {
             throw py::value_error("boxes has " + std::to_string(hs.size()) + " entries for " +
-                                  std::to_string(xs.size()) + " structures");
+                                  std::to_string(xs.size()) + " structures (of points)");
         }
         // periodic: one bool or three for every structure, or one of those per structure.
         const py::array flags = numpy_array(periodic, "periodic");
         const bool per_structure = flags.ndim() == 2;
         if (per_structure && static_cast<std::size_t>(flags.shape(0)) != xs.size()) {
             throw py::value_error("periodic has " + std::to_string(flags.shape(0)) +
-                                  " entries for " + std::to_string(xs.size()) + " structures");
+                                  " entries for " + std::to_string(xs.size()) +
+                                  " structures (of points)");
         }
         std::vector<DoubleArray> arrays;
         std::vector<BatchStructure> structures;

@@ -10,6 +10,8 @@ message names the argument: never another exception, never a different answer. A
 kinds (f, i, u) for positions, boxes and radii; integers, and floats holding whole numbers, for
 species; bools and the integers 0 and 1 for periodicity. Everything else is refused.
 
+Batches are walked both as sequences of arrays and as one (S, N, 3), (S, 3, 3) or (S, 3) array.
+
 `python3 test_hostile_arguments.py` prints how many cases gave each outcome."""
 import collections
 import types
@@ -71,14 +73,15 @@ def layouts(value):
         out.append(("every other row", wide[::2]))
         backwards = value[::-1].copy()
         out.append(("negative stride", backwards[::-1]))
-    if value.ndim == 2:
-        columns = np.zeros((value.shape[0], value.shape[1] * 3), value.dtype)
-        columns[:, 1::3] = value
-        out.append(("column view", columns[:, 1::3]))
+    if value.ndim >= 2:
+        columns = np.zeros(value.shape[:-1] + (value.shape[-1] * 3,), value.dtype)
+        columns[..., 1::3] = value
+        out.append(("column view", columns[..., 1::3]))
         out.append(("transposed twice", value.T.copy().T))
-        both = np.zeros((value.shape[0] * 2, value.shape[1] * 2), value.dtype)[::-2, ::-2]
+        every = tuple(slice(None, None, -2) for _ in value.shape)
+        both = np.zeros(tuple(2 * n for n in value.shape), value.dtype)[every]
         both[...] = value
-        out.append(("negative strides on both axes", both))
+        out.append(("negative strides on every axis", both))
     frozen = value.copy()
     frozen.flags.writeable = False
     out.append(("read-only", frozen))
@@ -91,6 +94,9 @@ def wrong_shapes(value, rule, name):
     scalar = rule != "periodic" and name != "cutoff"
     out = [("0-d scalar", np.asarray(value).reshape(-1)[0])] if scalar else []
     out.append(("one more axis", value[None]))
+    if value.ndim == 3:  # one array of structures
+        return out + [("one column less", value[..., :-1]), ("one column more", value[..., :1]),
+                      ("flattened structures", value.reshape(value.shape[0], -1))]
     if value.ndim == 2:
         out += [("one column less", value[:, :-1]),
                 ("one column more", np.hstack([value, value[:, :1]])),
@@ -177,6 +183,12 @@ CASES = [
     ("NeighborList.compute_batch", "boxes", "real", B,
      lambda x: tricell.NeighborList(1.8).compute_batch([P, P], [B, x], Q, "ijSd")),
     ("NeighborList.compute_batch", "periodic", "periodic", Q,
+     lambda x: tricell.NeighborList(1.8).compute_batch([P, P], [B, B], x, "ijSd")),
+    ("NeighborList.compute_batch (S, N, 3)", "points", "real", np.stack([P, P[::-1]]),
+     lambda x: tricell.NeighborList(1.8).compute_batch(x, [B, B], Q, "ijSd")),
+    ("NeighborList.compute_batch (S, 3, 3)", "boxes", "real", np.stack([B, 1.1 * B]),
+     lambda x: tricell.NeighborList(1.8).compute_batch([P, P], x, Q, "ijSd")),
+    ("NeighborList.compute_batch (S, 3)", "periodic", "periodic", np.array([Q, [1, 0, 1]], bool),
      lambda x: tricell.NeighborList(1.8).compute_batch([P, P], [B, B], x, "ijSd")),
     ("VerletList.update", "points", "real", P,
      lambda x: tricell.VerletList(1.8, 0.3).update(x, B, Q, "ijSd")),
