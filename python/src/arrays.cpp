@@ -1,5 +1,6 @@
 #include "arrays.hpp"
 
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <sstream>
@@ -42,13 +43,91 @@ py::array column(const T* data, std::size_t count, std::size_t width, const py::
 
 } // namespace
 
-DoubleArray points_array(const py::handle& points, const char* name) {
-    auto a = DoubleArray::ensure(points);
-    if (!a) {
-        throw py::error_already_set();
+namespace {
+
+std::string dtype_of(const py::array& a) {
+    return py::str(a.dtype()).cast<std::string>();
+}
+
+// "dtype complex128, shape (4, 3)": what an argument got, for messages.
+std::string got(const py::array& a) {
+    return "dtype " + dtype_of(a) + ", shape " + shape_of(a);
+}
+
+// What a dtype kind refused for numbers holds, for messages.
+const char* kind_name(char kind) {
+    switch (kind) {
+    case 'b':
+        return "bool";
+    case 'c':
+        return "complex";
+    case 'M':
+        return "datetime";
+    case 'm':
+        return "timedelta";
+    case 'O':
+        return "Python objects";
+    case 'S':
+        return "bytes";
+    case 'U':
+        return "str";
+    case 'V':
+        return "structured or void";
+    default:
+        return "not numbers";
     }
-    // An empty list or array means no atoms, whatever its shape.
-    if (a.size() == 0) {
+}
+
+bool is_real_kind(char kind) {
+    return kind == 'f' || kind == 'i' || kind == 'u';
+}
+
+// The first line of a Python error's message, at most 120 characters.
+std::string short_message(const py::error_already_set& e) {
+    std::string text = py::str(e.value()).cast<std::string>();
+    text = text.substr(0, text.find('\n'));
+    return text.size() > 120 ? text.substr(0, 117) + "..." : text;
+}
+
+} // namespace
+
+py::array numpy_array(const py::handle& value, const char* name) {
+    if (py::isinstance<py::array>(value)) {
+        return py::reinterpret_borrow<py::array>(value);
+    }
+    try {
+        return py::module_::import("numpy").attr("asarray")(value).cast<py::array>();
+    } catch (py::error_already_set& e) {
+        // An interrupt or a failed allocation is no property of the argument: it goes on.
+        if (!e.matches(PyExc_Exception) || e.matches(PyExc_MemoryError)) {
+            throw;
+        }
+        if (e.matches(PyExc_ValueError)) {
+            throw py::value_error(std::string(name) +
+                                  " must be a rectangular array of numbers (got a ragged or "
+                                  "unconvertible sequence: " +
+                                  short_message(e) + ")");
+        }
+        throw py::type_error(std::string(name) + " cannot be converted to a numpy array (got " +
+                             std::string(Py_TYPE(value.ptr())->tp_name) + ": " + short_message(e) +
+                             ")");
+    }
+}
+
+DoubleArray real_array(const py::handle& value, const char* name) {
+    const py::array a = numpy_array(value, name);
+    const char kind = a.dtype().kind();
+    if (!is_real_kind(kind)) {
+        throw py::type_error(std::string(name) + " must hold real numbers (float or int), not " +
+                             kind_name(kind) + " (got " + got(a) + ")");
+    }
+    return DoubleArray(a); // a copy unless a is C-contiguous native float64 already
+}
+
+DoubleArray points_array(const py::handle& points, const char* name) {
+    DoubleArray a = real_array(points, name);
+    // An empty list, or an empty array of N x 3 points, means no atoms.
+    if (a.size() == 0 && (a.ndim() == 1 || (a.ndim() == 2 && a.shape(1) == 3))) {
         return DoubleArray(std::vector<py::ssize_t>{0, 3});
     }
     if (a.ndim() != 2 || a.shape(1) != 3) {
@@ -58,11 +137,18 @@ DoubleArray points_array(const py::handle& points, const char* name) {
     return a;
 }
 
-DoubleArray per_atom_array(const py::handle& values, std::size_t atoms, const char* name) {
-    auto a = DoubleArray::ensure(values);
-    if (!a) {
-        throw py::error_already_set();
+DoubleArray box_array(const py::handle& box, const char* name) {
+    DoubleArray a = real_array(box, name);
+    if (a.ndim() != 2 || a.shape(0) != 3 || a.shape(1) != 3) {
+        value_error(std::string(name) +
+                    " must be a 3 x 3 array with the lattice vectors as rows (got shape " +
+                    shape_of(a) + ")");
     }
+    return a;
+}
+
+DoubleArray per_atom_array(const py::handle& values, std::size_t atoms, const char* name) {
+    DoubleArray a = real_array(values, name);
     if (a.ndim() != 1 || static_cast<std::size_t>(a.shape(0)) != atoms) {
         value_error(std::string(name) + " must have one value per atom, shape (" +
                     std::to_string(atoms) + ",) (got shape " + shape_of(a) + ")");
@@ -70,60 +156,134 @@ DoubleArray per_atom_array(const py::handle& values, std::size_t atoms, const ch
     return a;
 }
 
-std::vector<std::int32_t> per_atom_species(const py::handle& values, std::size_t atoms) {
-    const py::array a = py::array::ensure(values);
-    if (!a || (a.size() > 0 && a.dtype().kind() != 'i' && a.dtype().kind() != 'u')) {
-        PyErr_Clear();
-        value_error("species must be integers, one per atom (got " +
-                    py::repr(values).cast<std::string>().substr(0, 80) + ")");
+std::vector<std::int32_t> species_array(const py::handle& values, const char* name) {
+    const py::array a = numpy_array(values, name);
+    const char kind = a.dtype().kind();
+    if (!is_real_kind(kind)) {
+        throw py::type_error(std::string(name) + " must be integers, not " + kind_name(kind) +
+                             " (got " + got(a) + ")");
     }
-    if (a.ndim() != 1 || static_cast<std::size_t>(a.shape(0)) != atoms) {
-        value_error("species must have one value per atom, shape (" + std::to_string(atoms) +
-                    ",) (got shape " + shape_of(a) + ")");
+    if (a.ndim() != 1) {
+        value_error(std::string(name) + " must be a 1-D array of integers (got shape " +
+                    shape_of(a) + ")");
     }
-    const auto wide = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>(a);
-    std::vector<std::int32_t> out(atoms);
-    for (std::size_t k = 0; k < atoms; ++k) {
-        const std::int64_t v = wide.data()[k];
-        if (v < INT32_MIN || v > INT32_MAX) {
-            value_error("species[" + std::to_string(k) + "] does not fit a 32-bit integer (got " +
-                        std::to_string(v) + ")");
+    const auto n = static_cast<std::size_t>(a.shape(0));
+    std::vector<std::int32_t> out(n);
+    const auto out_of_range = [&](std::size_t k, const std::string& v) {
+        value_error(std::string(name) + "[" + std::to_string(k) +
+                    "] does not fit a 32-bit integer (got " + v + ", dtype " + dtype_of(a) + ")");
+    };
+    if (kind == 'u') {
+        const py::array_t<std::uint64_t, py::array::c_style | py::array::forcecast> wide(a);
+        for (std::size_t k = 0; k < n; ++k) {
+            const std::uint64_t v = wide.data()[k];
+            if (v > static_cast<std::uint64_t>(INT32_MAX)) {
+                out_of_range(k, std::to_string(v));
+            }
+            out[k] = static_cast<std::int32_t>(v);
         }
-        out[k] = static_cast<std::int32_t>(v);
+    } else if (kind == 'i') {
+        const py::array_t<std::int64_t, py::array::c_style | py::array::forcecast> wide(a);
+        for (std::size_t k = 0; k < n; ++k) {
+            const std::int64_t v = wide.data()[k];
+            if (v < INT32_MIN || v > INT32_MAX) {
+                out_of_range(k, std::to_string(v));
+            }
+            out[k] = static_cast<std::int32_t>(v);
+        }
+    } else {
+        const DoubleArray wide(a);
+        for (std::size_t k = 0; k < n; ++k) {
+            const double v = wide.data()[k];
+            if (!(std::floor(v) == v)) { // NaN and infinities too
+                std::ostringstream text;
+                text << name << " must be integers (got " << name << "[" << k << "] = " << v
+                     << ", dtype " << dtype_of(a) << ")";
+                value_error(text.str());
+            }
+            if (v < INT32_MIN || v > INT32_MAX) {
+                std::ostringstream text;
+                text << v;
+                out_of_range(k, text.str());
+            }
+            out[k] = static_cast<std::int32_t>(v);
+        }
     }
     return out;
 }
 
-Box box_from_rows(const py::handle& box, const py::handle& periodic) {
-    auto a = DoubleArray::ensure(box);
-    if (!a) {
-        throw py::error_already_set();
+std::vector<std::int32_t> per_atom_species(const py::handle& values, std::size_t atoms,
+                                           const char* name) {
+    std::vector<std::int32_t> out = species_array(values, name);
+    if (out.size() != atoms) {
+        value_error(std::string(name) + " must have one value per atom, shape (" +
+                    std::to_string(atoms) + ",) (got shape (" + std::to_string(out.size()) + ",))");
     }
-    if (a.ndim() != 2 || a.shape(0) != 3 || a.shape(1) != 3) {
-        value_error("box must be a 3 x 3 array with the lattice vectors as rows (got shape " +
-                    shape_of(a) + ")");
+    return out;
+}
+
+Periodicity periodicity(const py::handle& periodic, const char* name) {
+    const py::array a = numpy_array(periodic, name);
+    const char kind = a.dtype().kind();
+    if (kind != 'b' && kind != 'i' && kind != 'u') {
+        throw py::type_error(std::string(name) + " must be bools, not " +
+                             (kind == 'f' ? "float" : kind_name(kind)) + " (got " + got(a) + ")");
     }
+    if (!(a.ndim() == 0 || (a.ndim() == 1 && a.shape(0) == 3))) {
+        value_error(std::string(name) + " must be a bool or three bools (got shape " + shape_of(a) +
+                    ")");
+    }
+    const py::array_t<std::int64_t, py::array::c_style | py::array::forcecast> flags(a);
+    Periodicity pbc;
+    for (std::size_t k = 0; k < 3; ++k) {
+        const std::int64_t v = flags.data()[a.ndim() == 0 ? 0 : k];
+        if (v != 0 && v != 1) {
+            value_error(std::string(name) + " must be bools, or the integers 0 and 1 (got " +
+                        std::to_string(v) + ", dtype " + dtype_of(a) + ")");
+        }
+        pbc.axes[k] = v == 1;
+    }
+    return pbc;
+}
+
+Box box_from_rows(const py::handle& box, const py::handle& periodic, const char* box_name,
+                  const char* periodic_name) {
+    const DoubleArray a = box_array(box, box_name);
+    const Periodicity pbc = periodicity(periodic, periodic_name);
     Eigen::Matrix3d rows;
     for (int r = 0; r < 3; ++r) {
         for (int c = 0; c < 3; ++c) {
             rows(r, c) = a.at(r, c);
         }
     }
-    Periodicity pbc;
-    if (py::isinstance<py::bool_>(periodic) || py::isinstance<py::int_>(periodic)) {
-        pbc.axes.fill(periodic.cast<bool>());
-    } else {
-        auto flags = py::array_t<bool, py::array::forcecast>::ensure(periodic);
-        if (!flags || flags.ndim() != 1 || flags.shape(0) != 3) {
-            PyErr_Clear();
-            value_error("periodic must be a bool or three bools (got " +
-                        py::repr(periodic).cast<std::string>() + ")");
-        }
-        for (int k = 0; k < 3; ++k) {
-            pbc.axes[static_cast<std::size_t>(k)] = flags.at(k);
-        }
-    }
     return Box::from_rows(rows, pbc);
+}
+
+py::array checked_array(const py::handle& value, const std::string& name, const std::string& rule) {
+    const char* label = name.c_str();
+    if (rule == "points") {
+        return points_array(value, label);
+    }
+    if (rule == "box") {
+        return box_array(value, label);
+    }
+    if (rule == "real") {
+        return real_array(value, label);
+    }
+    if (rule == "species") {
+        const std::vector<std::int32_t> values = species_array(value, label);
+        return py::array_t<std::int32_t>(static_cast<py::ssize_t>(values.size()), values.data());
+    }
+    if (rule == "periodic") {
+        const Periodicity pbc = periodicity(value, label);
+        py::array_t<bool> out(3);
+        for (std::size_t k = 0; k < 3; ++k) {
+            out.mutable_data()[k] = pbc.axes[k];
+        }
+        return std::move(out);
+    }
+    value_error("rule must be \"points\", \"box\", \"real\", \"species\" or \"periodic\" (got \"" +
+                rule + "\")");
 }
 
 Quantities parse_quantities(const std::string& letters) {

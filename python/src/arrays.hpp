@@ -1,9 +1,25 @@
 // Translations between numpy arrays and tricell's C++ types, shared by the module's bindings.
 //
-// Inputs: any array-like (lists, float32, non-contiguous or strided arrays) is converted once to
-// a C-contiguous float64 array, whose shape is checked here with a message naming the argument
-// and the shape received. Values are left to the library to check (a NaN position is reported
-// by tricell with its index), so no rule is written twice.
+// Inputs: every array argument goes through numpy_array() (np.asarray, so lists, tuples and
+// objects with __array__ work), and its dtype.kind is classified before anything is cast, so
+// a cast never hides a wrong kind of value. This file holds the whole rule:
+//   - positions, boxes and per-atom values (points, box, radii) take real numbers: kinds 'f'
+//     (float16 to longdouble), 'i' and 'u', any byte order, memory order, strides or
+//     writeability; they are converted once to C-contiguous float64 (a native float64
+//     C-contiguous input is used as it is), so every accepted layout gives the same result;
+//     points are N x 3 (an empty list or shape (0, 3) is no atoms), a box 3 x 3;
+//   - species take integers ('i', 'u'), or floats whose values are whole numbers;
+//   - periodic takes bools, or the integers 0 and 1; one value (every axis) or three;
+//   - any other kind is a TypeError: bool ('b') for numbers, complex ('c', never cast to its
+//     real part), datetime and timedelta ('M', 'm'), object ('O', also a list mixing numbers
+//     and None), bytes and str ('S', 'U', never parsed as numbers) and structured ('V');
+//   - a wrong shape (rank, width, count, a 0-d scalar), a ragged nested list, a fractional or
+//     out-of-range species, or a periodic flag other than 0 or 1 is a ValueError; an object
+//     numpy cannot convert at all (its __array__ raising) is a TypeError.
+// Every message names the argument and what it got ("points must hold real numbers (float or
+// int), not complex (got dtype complex128, shape (4, 3))"). Values are otherwise left to the
+// library to check (a NaN position is reported by tricell with its index), so no rule is
+// written twice. tricell._tricell._as_array applies the same rules for the Python drop-ins.
 //
 // Outputs: the columns of a tricell::NeighborList either copied into fresh numpy arrays or
 // handed out as views whose base object keeps the list's buffers alive (PairColumns). Letters
@@ -29,18 +45,40 @@ namespace py = pybind11;
 
 using DoubleArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
-/// N x 3 positions from any array-like; `name` is used in error messages.
+/// `value` as a numpy array (np.asarray), nothing cast yet; a ragged nested sequence is a
+/// ValueError, anything numpy cannot convert a TypeError, both naming `name`.
+py::array numpy_array(const py::handle& value, const char* name);
+
+/// Real numbers of any shape as C-contiguous float64; TypeError for any other kind.
+DoubleArray real_array(const py::handle& value, const char* name);
+
+/// N x 3 positions (an empty list or an empty (0, 3) array is no atoms).
 DoubleArray points_array(const py::handle& points, const char* name = "points");
 
-/// N values (one per atom) from any array-like, checked against the atom count.
+/// A 3 x 3 box, the lattice vectors as rows.
+DoubleArray box_array(const py::handle& box, const char* name = "box");
+
+/// N real values (one per atom), checked against the atom count.
 DoubleArray per_atom_array(const py::handle& values, std::size_t atoms, const char* name);
 
-/// N integer species (one per atom) from any array-like of integers.
-std::vector<std::int32_t> per_atom_species(const py::handle& values, std::size_t atoms);
+/// A 1-D array of integer species of any length.
+std::vector<std::int32_t> species_array(const py::handle& values, const char* name);
+
+/// N integer species (one per atom).
+std::vector<std::int32_t> per_atom_species(const py::handle& values, std::size_t atoms,
+                                           const char* name = "species");
+
+/// Periodicity from one bool (every axis) or three.
+Periodicity periodicity(const py::handle& periodic, const char* name = "periodic");
 
 /// A Box from lattice vectors as the rows of a 3 x 3 array-like, and `periodic` given as one
 /// bool or three.
-Box box_from_rows(const py::handle& box, const py::handle& periodic);
+Box box_from_rows(const py::handle& box, const py::handle& periodic, const char* box_name = "box",
+                  const char* periodic_name = "periodic");
+
+/// The checks above for Python code (tricell._tricell._as_array): `rule` is "points", "box",
+/// "real", "species" or "periodic"; returns the converted array (float64, int32 or 3 bools).
+py::array checked_array(const py::handle& value, const std::string& name, const std::string& rule);
 
 /// Which NeighborList columns a quantities string needs; throws ValueError for other letters.
 Quantities parse_quantities(const std::string& letters);

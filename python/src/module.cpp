@@ -11,6 +11,8 @@
 #include <tricell/error.hpp>
 #include <tricell/neighbor_list.hpp>
 
+#include "arrays.hpp"
+
 namespace tricell::python {
 
 namespace py = pybind11;
@@ -52,6 +54,12 @@ PYBIND11_MODULE(_tricell, m) {
             return names;
         },
         "The names backend= takes, \"auto\" first, from the library's table of backends.");
+    m.def("_as_array", &tricell::python::checked_array, py::arg("value"), py::arg("name"),
+          py::arg("rule"),
+          "value converted by the rules every array argument of this module follows, its "
+          "TypeError or ValueError naming name: rule \"points\" (N x 3 float64), \"box\" "
+          "(3 x 3 float64), \"real\" (float64, any shape), \"species\" (1-D int32) or "
+          "\"periodic\" (3 bools). For the drop-ins, which name their own arguments.");
     tricell::python::bind_neighbors(m);
     tricell::python::bind_displacement(m);
     tricell::python::bind_read(m);

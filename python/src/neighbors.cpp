@@ -27,13 +27,23 @@ namespace tricell::python {
 
 namespace {
 
+// repr(value), at most 80 characters, or its type's name when repr itself fails.
+std::string described(const py::handle& value) {
+    try {
+        const std::string text = py::repr(value).cast<std::string>();
+        return text.size() > 80 ? text.substr(0, 77) + "..." : text;
+    } catch (const py::error_already_set&) {
+        return std::string("a ") + Py_TYPE(value.ptr())->tp_name;
+    }
+}
+
 // `value` as a sequence (a list, a tuple, an array of one more dimension), else ValueError.
 py::sequence checked_sequence(const py::handle& value, const char* name) {
     if (!py::isinstance<py::sequence>(value) || py::isinstance<py::str>(value)) {
         throw py::value_error(std::string(name) +
                               " must be a sequence with one entry per "
                               "structure (got " +
-                              py::repr(value).cast<std::string>() + ")");
+                              described(value) + ")");
     }
     return py::reinterpret_borrow<py::sequence>(value);
 }
@@ -138,14 +148,15 @@ class PyNeighborList {
         const py::sequence hs = checked_sequence(boxes, "boxes");
         if (hs.size() != xs.size()) {
             throw py::value_error("boxes has " + std::to_string(hs.size()) + " entries for " +
-                                  std::to_string(xs.size()) + " structures");
+                                  std::to_string(xs.size()) + " structures (of points)");
         }
         // periodic: one bool or three for every structure, or one of those per structure.
-        const bool per_structure =
-            py::module_::import("numpy").attr("ndim")(periodic).cast<int>() == 2;
-        if (per_structure && py::len(periodic) != xs.size()) {
-            throw py::value_error("periodic has " + std::to_string(py::len(periodic)) +
-                                  " entries for " + std::to_string(xs.size()) + " structures");
+        const py::array flags = numpy_array(periodic, "periodic");
+        const bool per_structure = flags.ndim() == 2;
+        if (per_structure && static_cast<std::size_t>(flags.shape(0)) != xs.size()) {
+            throw py::value_error("periodic has " + std::to_string(flags.shape(0)) +
+                                  " entries for " + std::to_string(xs.size()) +
+                                  " structures (of points)");
         }
         std::vector<DoubleArray> arrays;
         std::vector<BatchStructure> structures;
@@ -154,13 +165,15 @@ class PyNeighborList {
         for (std::size_t s = 0; s < xs.size(); ++s) {
             try {
                 arrays.push_back(points_array(xs[s]));
-                const py::object pbc = per_structure ? py::object(periodic.cast<py::sequence>()[s])
-                                                     : py::reinterpret_borrow<py::object>(periodic);
+                const py::object pbc =
+                    per_structure ? py::object(flags[py::int_(s)]) : py::object(flags);
                 structures.push_back(BatchStructure{
-                    box_from_rows(hs[s], pbc),
+                    box_from_rows(hs[s], pbc, "boxes"),
                     PointsView(arrays.back().data(), std::size_t(arrays.back().shape(0)))});
             } catch (const py::value_error& e) {
                 throw py::value_error("structure " + std::to_string(s) + ": " + e.what());
+            } catch (const py::type_error& e) {
+                throw py::type_error("structure " + std::to_string(s) + ": " + e.what());
             } catch (const Error&) {
                 detail::rethrow_for_structure(s);
             }
@@ -288,7 +301,11 @@ both give per-atom offsets (quantity 'o'). threads=0 uses every core; the result
 identical for any thread count. backend ()doc" +
                             quoted_backends() + R"doc() changes only the speed.
 max_pairs refuses a list of more pairs (a batch: in total) before it is allocated, from an
-estimate, or as soon as the stored pairs pass it; 0 = no limit.)doc";
+estimate, or as soon as the stored pairs pass it; 0 = no limit.
+Array arguments take any array-like of real numbers (floats or integers, any byte order, memory
+order or strides; species integers, periodic bools or 0 and 1): another kind of value (bool,
+complex, str, object, datetime, ...) raises TypeError, a wrong shape ValueError, each naming the
+argument with the dtype and shape it got.)doc";
     py::class_<PyNeighborList>(m, "NeighborList", doc.c_str())
         .def(py::init<const py::object&, bool, bool, int, const std::string&, std::size_t, bool>(),
              py::arg("cutoff"), py::arg("full") = true, py::arg("sorted") = false,

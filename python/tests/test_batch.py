@@ -63,7 +63,7 @@ def test_batch_errors_name_the_structure():
         nl.compute_batch(3.0, [np.eye(3)])
     with pytest.raises(ValueError, match=r"structure 1: points must be an array of shape \(N, 3\)"):
         nl.compute_batch([x, x[:, :2]], [np.eye(3)] * 2)
-    with pytest.raises(ValueError, match=r"structure 1: box must be a 3 x 3 array"):
+    with pytest.raises(ValueError, match=r"structure 1: boxes must be a 3 x 3 array"):
         nl.compute_batch([x, x], [np.eye(3), np.eye(2)])
     with pytest.raises(ValueError, match=r"structure 0: "):
         nl.compute_batch([x, x], [np.zeros((3, 3)), np.eye(3)])

@@ -382,3 +382,37 @@ def test_unknown_quantities_raise_messages_naming_the_letter():
         tt.NeighborList(1.0)(torch.zeros(2, 3), torch.eye(3), PBC, "ijx")
     with pytest.raises(torch.jit.Error, match=message):
         torch.jit.script(tt.NeighborList(1.0))(torch.zeros(2, 3), torch.eye(3), PBC, "ijx")
+
+
+# Every dtype but float32 and float64 (quantized ones aside), with the name torch's messages use.
+SCALAR_TYPES = {torch.uint8: "Byte", torch.int8: "Char", torch.int16: "Short", torch.int32: "Int",
+                torch.int64: "Long", torch.bool: "Bool", torch.float16: "Half",
+                torch.bfloat16: "BFloat16", torch.complex32: "ComplexHalf",
+                torch.complex64: "ComplexFloat", torch.complex128: "ComplexDouble"}
+
+
+@pytest.mark.filterwarnings("ignore:ComplexHalf support is experimental")
+@pytest.mark.parametrize("dtype", SCALAR_TYPES, ids=str)
+def test_integer_complex_and_bool_tensors_name_the_argument_and_dtype(dtype):
+    x, h = torch.zeros(4, 3), torch.eye(3)
+    for points, cell, name in ((x.to(dtype), h, "positions"), (x, h.to(dtype), "cell")):
+        got = SCALAR_TYPES[dtype]
+        message = rf"neighbor_pairs: {name} must be float32 or float64 \(got {got}\)"
+        for nl in (tt.NeighborList(1.0), torch.jit.script(tt.NeighborList(1.0))):
+            with pytest.raises(RuntimeError, match=message):
+                nl(points, cell, PBC)
+
+
+def test_strided_and_transposed_tensors_give_the_pairs_of_contiguous_ones():
+    cell, positions, pbc, cutoff, _ = random_system(3, atoms=30, pbc=(True, True, True))
+    x, h = as_tensors(positions, cell)
+    nl = tt.NeighborList(cutoff)
+    expected = nl(x, h, list(pbc), "ijSd")
+    wide = torch.zeros(len(positions), 9, dtype=torch.float64)
+    wide[:, ::3] = x
+    for points, box in ((wide[:, ::3], h), (x.t().contiguous().t(), h.t().contiguous().t()),
+                        (torch.stack([x, x], 1).reshape(-1, 3)[::2],
+                         torch.stack([h, h], 1).reshape(-1, 3)[::2])):
+        assert not points.is_contiguous() or not box.is_contiguous()
+        for mine, theirs in zip(nl(points, box, list(pbc), "ijSd"), expected):
+            assert torch.equal(mine, theirs)

@@ -29,7 +29,9 @@ rebuilds); between rebuilds the neighbours are the build's candidates, offsets f
 that jumped by a lattice vector, and contain every pair within the real cutoffs.
 
 This module only translates arguments: the search, including per-atom and per-pair cutoffs,
-runs in the C++ library.
+runs in the C++ library. Array arguments follow the native module's rules, with errors naming
+ASE's arguments: positions, cell, pbc, numbers and cutoff (a TypeError for a kind of value that
+is no real number, such as complex, str or object; a ValueError for a wrong shape).
 """
 import threading
 
@@ -37,6 +39,7 @@ import numpy as np
 
 from ._ase_classes import NeighborList, NewPrimitiveNeighborList, PrimitiveNeighborList
 from ._tricell import NeighborList as _Search
+from ._tricell import _as_array
 
 __all__ = ["neighbor_list", "primitive_neighbor_list", "first_neighbors", "NeighborList",
            "PrimitiveNeighborList", "NewPrimitiveNeighborList"]
@@ -63,8 +66,9 @@ _last_search = threading.local()
 
 
 def _search(key, cutoff):
-    """This thread's tricell.NeighborList(cutoff, grouped=True) for `key`, kept from its last call so that
-    repeated calls with the same cutoff reuse the list's memory (one per thread: the last)."""
+    """This thread's tricell.NeighborList(cutoff, grouped=True) for `key`, kept from its last
+    call so that repeated calls with the same cutoff reuse the list's memory (one per thread:
+    the last)."""
     last = getattr(_last_search, "value", None)
     if last is None or last[0] != key:
         last = (key, _Search(cutoff, grouped=True))
@@ -98,15 +102,25 @@ def primitive_neighbor_list(quantities, pbc, cell, positions, cutoff, numbers=No
     for q in quantities:
         if q not in _EMPTY:
             raise ValueError("Unsupported quantity specified.")
+    positions = _as_array(positions, "positions", "points")
+    cell = _as_array(cell, "cell", "box")
+    pbc = _as_array(pbc, "pbc", "periodic")
+    if not isinstance(cutoff, dict):
+        cutoff = _as_array(cutoff, "cutoff", "real")
+        if cutoff.ndim != 0 and cutoff.shape != (len(positions),):
+            raise ValueError(f"cutoff must be one number or one value per atom, shape "
+                             f"({len(positions)},) (got shape {cutoff.shape})")
+    elif numbers is not None:  # as in ASE, numbers are read only for a dict cutoff
+        numbers = _as_array(numbers, "numbers", "species")
+        if len(numbers) != len(positions):
+            raise ValueError(f"numbers must have one value per atom, shape ({len(positions)},) "
+                             f"(got shape {numbers.shape})")
     if len(positions) == 0:
         return _empty(quantities)
     from ase.geometry import complete_cell
 
-    cell = np.asarray(cell, dtype=float)
-    positions = np.asarray(positions, dtype=float)
     if use_scaled_positions:
         positions = positions @ cell
-    pbc = np.broadcast_to(np.asarray(pbc, dtype=bool), (3,))
 
     needed = "ij" + "".join(q for q in "SdD" if q in quantities)
     if self_interaction:
@@ -118,11 +132,10 @@ def primitive_neighbor_list(quantities, pbc, cell, positions, cutoff, numbers=No
         if not table:
             return _empty(quantities)
         search = _search(("species", tuple(sorted(table.items()))), table)
-        extra = {"species": np.asarray(numbers)}
+        extra = {"species": numbers}
         # An atom and itself (d = 0) count when its element pair with itself has a cutoff.
-        has_self = np.array([table.get((z, z), 0) > 0 for z in np.asarray(numbers).tolist()],
-                            dtype=bool)
-    elif np.isscalar(cutoff):
+        has_self = np.array([table.get((z, z), 0) > 0 for z in numbers.tolist()], dtype=bool)
+    elif cutoff.ndim == 0:
         if not cutoff > 0:
             return _empty(quantities)  # ASE keeps d < cutoff: nothing for a cutoff <= 0
         search = _search(("cutoff", float(cutoff)), float(cutoff))
@@ -130,8 +143,8 @@ def primitive_neighbor_list(quantities, pbc, cell, positions, cutoff, numbers=No
         has_self = np.ones(len(positions), dtype=bool)
     else:
         search = _search(("radii",), None)
-        extra = {"radii": np.asarray(cutoff, dtype=float)}
-        has_self = extra["radii"] > 0
+        extra = {"radii": cutoff}
+        has_self = cutoff > 0
     # Views of the list's buffers (copy=False): each column is copied once, into ASE's dtype.
     found = search.compute(positions, complete_cell(cell), pbc, needed, copy=False, **extra)
     columns = dict(zip(needed, found))
