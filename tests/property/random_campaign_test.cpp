@@ -204,7 +204,8 @@ Variant random_variant(std::mt19937_64& rng, const CampaignSystem& sys) {
         o.max_cells = std::size_t(integer(1, 64)); // the dense grid's cap bites (quadratic)
     }
     if (integer(0, 3) == 0) {
-        o.hash_table_size = std::size_t(integer(1, 7)); // collisions everywhere
+        // collisions everywhere (a lookup walks cells / slots: small systems only)
+        o.hash_table_size = std::size_t(n <= 2000 ? integer(1, 7) : integer(int(n / 64), int(n)));
     }
     if (integer(0, 1) == 0) {
         o.leaf_size = std::size_t(integer(n <= 2000 ? 1 : 8, 32));
