@@ -42,7 +42,7 @@ namespace {
 // The sanitizer build (TRICELL_CAMPAIGN_SANITIZED from tests/CMakeLists.txt) runs fewer and
 // smaller systems.
 #ifdef TRICELL_CAMPAIGN_SANITIZED
-constexpr std::uint64_t small_count = 60, medium_count = 4, large_count = 1, mixed_count = 6;
+constexpr std::uint64_t small_count = 120, medium_count = 8, large_count = 1, mixed_count = 12;
 constexpr std::size_t large_min = 20000, large_max = 30000, direct_limit = 300;
 #else
 constexpr std::uint64_t small_count = 200, medium_count = 20, large_count = 2, mixed_count = 20;
