@@ -1,10 +1,9 @@
 // The `tricell` command on a large MD-like frame: every command finishes in time proportional
-// to its input. The suite writes a random periodic frame of TRICELL_LARGE_ATOMS atoms (10^5; fewer
-// in the sanitizer build, where every command runs several times slower) and an fcc crystal
-// of 1372 atoms as extended XYZ into a fresh directory of the build tree, then runs each command
-// on them. ctest's TIMEOUT (tests/io/CMakeLists.txt) is the time limit; `info` must say that
-// it skipped spglib's space-group search, whose time grows as atoms^2, and run it when
-// --symmetry-max-atoms asks.
+// to its input. The suite writes a random periodic frame of 10^5 atoms at liquid argon's
+// density and an fcc crystal of 1372 atoms as extended XYZ into a fresh directory of the build
+// tree, then runs each command on them. ctest's TIMEOUT (tests/io/CMakeLists.txt) is the time
+// limit; `info` must say that it skipped spglib's space-group search, whose time grows as
+// atoms^2, and run it when --symmetry-max-atoms asks.
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -31,7 +30,8 @@ struct Result {
     std::string err;
 };
 
-// Liquid argon's number density (atoms per cubic Angstrom).
+// Atoms of the random frame, and liquid argon's number density (atoms per cubic Angstrom).
+constexpr std::size_t large_atoms = 100'000;
 constexpr double density = 0.021;
 
 // A portable generator (the same frame with every standard library): 64-bit LCG, top 53 bits.
@@ -62,7 +62,7 @@ class LargeFrame : public ::testing::Test {
         ASSERT_NE(::mkdtemp(pattern.data()), nullptr);
         dir_ = pattern;
 
-        const std::size_t n = TRICELL_LARGE_ATOMS;
+        const std::size_t n = large_atoms;
         const double length = std::cbrt(double(n) / density);
         std::ofstream random(dir_ + "/random.xyz");
         write_xyz_header(random, n, length);
@@ -128,7 +128,7 @@ class LargeFrame : public ::testing::Test {
 
 std::string LargeFrame::dir_;
 
-const std::string atoms = std::to_string(TRICELL_LARGE_ATOMS);
+const std::string atoms = std::to_string(large_atoms);
 
 TEST_F(LargeFrame, InfoOnABundledCrystalReportsTheSpaceGroup) {
     const Result r = run("info '" + tricell::test::source_dir() + "/examples/data/quartz.cif'");
@@ -169,13 +169,13 @@ TEST_F(LargeFrame, InfoSearchesAboveTheDefaultWhenAsked) {
 TEST_F(LargeFrame, Neighbors) {
     const Result r = run("neighbors random.xyz --cutoff 5 --output pairs.tsv");
     ASSERT_EQ(r.status, 0) << r.err;
-    EXPECT_GT(fs::file_size(dir_ + "/pairs.tsv"), std::uintmax_t(TRICELL_LARGE_ATOMS));
+    EXPECT_GT(fs::file_size(dir_ + "/pairs.tsv"), std::uintmax_t(large_atoms));
 }
 
 TEST_F(LargeFrame, NeighborsNearest) {
     const Result r = run("neighbors random.xyz --nearest 12 --output nearest.tsv");
     ASSERT_EQ(r.status, 0) << r.err;
-    EXPECT_GT(fs::file_size(dir_ + "/nearest.tsv"), std::uintmax_t(12 * TRICELL_LARGE_ATOMS));
+    EXPECT_GT(fs::file_size(dir_ + "/nearest.tsv"), std::uintmax_t(12 * large_atoms));
 }
 
 TEST_F(LargeFrame, Rdf) {
@@ -187,7 +187,7 @@ TEST_F(LargeFrame, Rdf) {
 TEST_F(LargeFrame, Coordination) {
     const Result r = run("coordination random.xyz --cutoff 4");
     ASSERT_EQ(r.status, 0) << r.err;
-    EXPECT_GT(r.out.size(), std::size_t(TRICELL_LARGE_ATOMS));
+    EXPECT_GT(r.out.size(), std::size_t(large_atoms));
 }
 
 TEST_F(LargeFrame, Bench) {
