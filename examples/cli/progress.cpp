@@ -30,6 +30,14 @@ void Progress::draw(std::size_t done) {
     drawn_ = true;
 }
 
+void Progress::show() {
+    if (shown_) {
+        std::fprintf(stderr, "\rtricell: %s ...  ", label_.c_str());
+        std::fflush(stderr);
+        drawn_ = true;
+    }
+}
+
 void Progress::finish() {
     if (drawn_) {
         std::fputs("\r\033[K", stderr);

@@ -25,6 +25,8 @@ class Progress {
             draw(done);
         }
     }
+    /// Draws "tricell: LABEL ..." now, for one long call that cannot report steps.
+    void show();
     /// Clears the line.
     void finish();
 

@@ -443,6 +443,11 @@ const BadCommand bad_commands[] = {
     {"info", 2, "tricell: info: missing FILE (see tricell info --help)\n"},
     {"info quartz.cif --symprec x", 2,
      "tricell: info: --symprec expects a number, got 'x' (see tricell info --help)\n"},
+    {"info quartz.cif --symmetry-max-atoms -1", 2,
+     "tricell: info: --symmetry-max-atoms must be a whole number in [0, 10000000], got '-1' (see "
+     "tricell info --help)\n"},
+    {"info quartz.cif --symmetry-max-atoms", 2,
+     "tricell: info: --symmetry-max-atoms needs a value (see tricell info --help)\n"},
     {"coordination quartz.cif", 2,
      "tricell: coordination: missing --cutoff R or --bond A-B=R (see tricell coordination "
      "--help)\n"},
