@@ -124,3 +124,22 @@ def test_ase_drop_in_thread_local_search_matches_serial():
                 assert _same(reference[c], got), f"case {c}"
 
     _run_threads(work)
+
+
+def test_one_neighbor_list_shared_by_many_threads_matches_serial():
+    # Calls on one object from several threads take turns (a mutex in python/src/neighbors.cpp);
+    # each caller's copies are its own.
+    cases = _cases(4, 1200, 29)
+    reference = _reference(cases)
+    shared = {c: tricell.NeighborList(cases[c][3], threads=2, **cases[c][4])
+              for c in range(len(cases))}
+
+    def work(t):
+        for _ in range(ROUNDS):
+            for k in range(len(cases)):
+                c = (k + t) % len(cases)
+                points, box, periodic, _, _ = cases[c]
+                got = shared[c].compute(points, box, periodic=periodic, quantities=QUANTITIES)
+                assert _same(reference[c], got), f"case {c}"
+
+    _run_threads(work)

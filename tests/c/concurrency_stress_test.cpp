@@ -59,8 +59,7 @@ template <class A, class T> bool same(const A& cxx, const T* c, std::size_t n) {
 
 bool same_list(const NeighborList& ref, const tricell_pairs& p) {
     return p.size == ref.size() && same(ref.i(), p.i, p.size) && same(ref.j(), p.j, p.size) &&
-           same(ref.shifts(), p.shifts, 3 * p.size) &&
-           same(ref.distances(), p.distances, p.size) &&
+           same(ref.shifts(), p.shifts, 3 * p.size) && same(ref.distances(), p.distances, p.size) &&
            (ref.vectors().empty() ? p.vectors == nullptr
                                   : same(ref.vectors(), p.vectors, 3 * p.size)) &&
            (ref.offsets().empty() ? p.offsets == nullptr
@@ -85,11 +84,10 @@ TEST(ConcurrencyStress, CApiMatchesSerialBitForBit) {
                     const std::size_t c = (k + static_cast<std::size_t>(t)) % cases.size();
                     const int n_threads = 1 + (t + r + static_cast<int>(c)) % 4;
                     const tricell_box box = c_box_of(cases[c]);
-                    const tricell_neighbor_options options =
-                        c_options(cases[c].options, n_threads);
-                    const tricell_status status = tricell_neighbors(
-                        search.get(), &box, cases[c].positions.front().data(),
-                        cases[c].positions.size(), &options, list.get());
+                    const tricell_neighbor_options options = c_options(cases[c].options, n_threads);
+                    const tricell_status status =
+                        tricell_neighbors(search.get(), &box, cases[c].positions.front().data(),
+                                          cases[c].positions.size(), &options, list.get());
                     tricell_pairs pairs;
                     if (status != TRICELL_OK ||
                         tricell_neighbor_list_pairs(list.get(), &pairs) != TRICELL_OK ||

@@ -67,12 +67,18 @@ inline std::string list_difference(const NeighborList& a, const NeighborList& b)
     if (a.size() != b.size()) {
         return "sizes " + std::to_string(a.size()) + " and " + std::to_string(b.size());
     }
-    if (!same_bits(a.i(), b.i())) return "i";
-    if (!same_bits(a.j(), b.j())) return "j";
-    if (!same_bits(a.shifts(), b.shifts())) return "shifts";
-    if (!same_bits(a.distances(), b.distances())) return "distances";
-    if (!same_bits(a.vectors(), b.vectors())) return "vectors";
-    if (!same_bits(a.offsets(), b.offsets())) return "offsets";
+    if (!same_bits(a.i(), b.i()))
+        return "i";
+    if (!same_bits(a.j(), b.j()))
+        return "j";
+    if (!same_bits(a.shifts(), b.shifts()))
+        return "shifts";
+    if (!same_bits(a.distances(), b.distances()))
+        return "distances";
+    if (!same_bits(a.vectors(), b.vectors()))
+        return "vectors";
+    if (!same_bits(a.offsets(), b.offsets()))
+        return "offsets";
     return "";
 }
 

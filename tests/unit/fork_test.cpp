@@ -118,7 +118,18 @@ TEST_F(ForkSafety, SeveralChildrenAndGrandchildren) {
     }
 }
 
+#if defined(__SANITIZE_THREAD__)
+#define TRICELL_TSAN 1
+#elif defined(__has_feature)
+#if __has_feature(thread_sanitizer)
+#define TRICELL_TSAN 1
+#endif
+#endif
+
 TEST_F(ForkSafety, ForkWhileOtherThreadsSearch) {
+#ifdef TRICELL_TSAN
+    GTEST_SKIP() << "ThreadSanitizer does not support threads in the child of a threaded fork";
+#endif
     // Other threads of the parent run threaded searches while the main thread forks: the child
     // has only the forking thread, and that thread's own calls work (the library keeps no
     // process-wide lock a search of another thread could hold across the fork).
