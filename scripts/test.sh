@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The whole test suite, from a fresh clone: installs what is missing, builds tricell twice
 # (optimised, and with AddressSanitizer + UndefinedBehaviorSanitizer), runs every test in
-# both, and checks formatting; then builds the libFuzzer harnesses with clang-14 (build-fuzz/),
+# both, and checks formatting; builds and runs the threading tests with ThreadSanitizer
+# (build-tsan/); then builds the libFuzzer harnesses with clang-14 (build-fuzz/),
 # replays their corpora and fuzzes each for a bounded time (tests/fuzz/README.md). Exit status
 # non-zero if anything fails.
 set -euo pipefail
@@ -23,6 +24,15 @@ cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTRICELL_SANITIZE=ON
     -DTRICELL_BUILD_BENCHMARKS=OFF -DBUILD_SHARED_LIBS=ON
 cmake --build build-asan -j "$jobs"
 ctest --test-dir build-asan -j "$jobs" --output-on-failure
+
+echo "== thread sanitizer (build-tsan/: the threading tests only)"
+cmake -S . -B build-tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTRICELL_SANITIZE_THREAD=ON \
+    -DTRICELL_BUILD_BENCHMARKS=OFF -DTRICELL_BUILD_PYTHON=OFF \
+    -DTRICELL_BUILD_IO=OFF -DTRICELL_BUILD_MPI=OFF -DTRICELL_BUILD_FORTRAN=OFF \
+    -DTRICELL_BUILD_EXAMPLES=OFF
+cmake --build build-tsan -j "$jobs" \
+    --target parallel_test concurrency_stress_test fork_test c_concurrency_stress_test
+ctest --test-dir build-tsan -R 'stress|fork|ThreadTeam' -j "$jobs" --output-on-failure
 
 echo "== fuzzers (build-fuzz/, clang-14, ASan + UBSan + libFuzzer)"
 bash scripts/fuzz-build.sh
