@@ -24,11 +24,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-    int status = -1;
-    std::string out;
-    std::string err;
-};
+using Result = tricell::test::CommandResult;
 
 // Atoms of the random frame, and liquid argon's number density (atoms per cubic Angstrom).
 constexpr std::size_t large_atoms = 100'000;
@@ -99,18 +95,10 @@ class LargeFrame : public ::testing::Test {
 
     // Runs `tricell ARGS` in the suite's directory and reports its wall time.
     static Result run(const std::string& args) {
-        const std::string out = dir_ + "/stdout";
-        const std::string err = dir_ + "/stderr";
-        const std::string command =
-            "cd '" + dir_ + "' && '" TRICELL_CLI "' " + args + " > '" + out + "' 2> '" + err + "'";
         const auto start = std::chrono::steady_clock::now();
-        const int status = std::system(command.c_str());
+        Result result = tricell::test::run_command(TRICELL_CLI, args, dir_, dir_);
         const std::chrono::duration<double> took = std::chrono::steady_clock::now() - start;
         std::printf("tricell %s: %.2f s\n", args.c_str(), took.count());
-        Result result;
-        result.status = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-        result.out = tricell::test::read_text(out);
-        result.err = tricell::test::read_text(err);
         return result;
     }
 

@@ -29,11 +29,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-    int status = -1;
-    std::string out;
-    std::string err;
-};
+using Result = tricell::test::CommandResult;
 
 std::string data_dir() {
     return tricell::test::source_dir() + "/tests/io/data";
@@ -70,16 +66,7 @@ class Cli : public ::testing::Test {
 
     // Runs `tricell ARGS` in tests/io/data.
     static Result run(const std::string& args) {
-        const std::string out = scratch_ + "/stdout";
-        const std::string err = scratch_ + "/stderr";
-        const std::string command = "cd '" + data_dir() + "' && '" TRICELL_CLI "' " + args +
-                                    " > '" + out + "' 2> '" + err + "'";
-        const int status = std::system(command.c_str());
-        Result result;
-        result.status = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-        result.out = tricell::test::read_text(out);
-        result.err = tricell::test::read_text(err);
-        return result;
+        return tricell::test::run_command(TRICELL_CLI, args, data_dir(), scratch_);
     }
 
     static std::string scratch_;
