@@ -133,6 +133,13 @@ typedef struct tricell_neighbor_options {
     const int32_t* species;
     const tricell_species_cutoff* species_cutoffs;
     size_t species_cutoff_count;
+    /* Pairs of a subset (NULL: every point; an empty subset is a non-NULL query with
+     * query_count 0). query: query_count indices of the positions, each < n and listed once. A full
+     * list holds the (i, j, S) with i in the query; a half list each pair with both ends in it once
+     * (canonical orientation) and each pair with one end in it once, oriented from that end. Every
+     * point is a neighbour; read during the call only. */
+    const uint32_t* query;
+    size_t query_count;
 } tricell_neighbor_options;
 
 TRICELL_C_API tricell_status tricell_neighbor_options_init(tricell_neighbor_options* options);

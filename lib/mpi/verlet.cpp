@@ -1,6 +1,7 @@
 #include "tricell/mpi/verlet.hpp"
 
 #include <exception>
+#include <numeric>
 #include <string>
 
 #include "collective.hpp"
@@ -51,6 +52,10 @@ bool DistributedVerletList::update(const Decomposition& decomposition, const Box
         built_ = false;
         migrate(decomposition, box, atoms);
         halo_.build(decomposition, box, atoms.ids, atoms.points(), local_.list_radius());
+        // Pairs of the owned atoms only (the first of the local atoms): no ghost-ghost pair.
+        std::vector<std::uint32_t> owned(halo_.owned_count());
+        std::iota(owned.begin(), owned.end(), 0u);
+        local_.set_query(std::move(owned));
         detail::agreed(comm, [&] { local_.rebuild(open, halo_.points()); });
         built_ = true;
         built_periodicity_ = box.periodicity();
@@ -59,6 +64,16 @@ bool DistributedVerletList::update(const Decomposition& decomposition, const Box
     detail::map_pairs(local_.pairs(), halo_, options_.neighbors.half, false,
                       options_.neighbors.quantities, pairs_);
     return !keep;
+}
+
+void DistributedVerletList::forward(const Decomposition& decomposition, const Box& box,
+                                    const LocalAtoms& atoms) {
+    halo_.update(decomposition, box, atoms.points());
+}
+
+void DistributedVerletList::reverse_sum(const Decomposition& decomposition,
+                                        std::vector<double>& values, std::size_t width) const {
+    halo_.reverse_sum(decomposition, values, width);
 }
 
 } // namespace tricell::mpi

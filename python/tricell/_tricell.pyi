@@ -33,6 +33,7 @@ class NeighborList:
         copy: bool = True,
         radii: Optional[ArrayLike] = None,
         species: Optional[ArrayLike] = None,
+        query: Optional[ArrayLike] = None,
     ) -> Union[np.ndarray, Tuple[np.ndarray, ...]]: ...
     def compute_batch(
         self,

@@ -174,6 +174,145 @@ TEST(MpiNeighbors, UnionEqualsSerial_CutoffLargerThanDomains) {
     }
 }
 
+// A pair force and a per-atom energy share that a Newton half list gives to both ends: F on i,
+// -F on j, e / 2 on each (a soft potential, finite for coincident atoms).
+struct PairForce {
+    Eigen::Vector3d f;
+    double e;
+};
+PairForce soft_force(const Eigen::Vector3d& d, double distance, double cutoff) {
+    const double x = cutoff - distance;
+    return PairForce{d * (x * x), x * x * x};
+}
+
+// Newton's third law across ranks: each rank runs the force loop over its half list (forces
+// and energy shares on owned and ghost rows, four doubles per atom), Halo::reverse_sum() adds
+// the ghost rows into their owners, and the owners' rows equal the serial half list's sums to
+// 1e-12 relative. Random systems and domain grids, cutoffs beyond a domain and the box.
+TEST(MpiNeighbors, NewtonHalfList_ReverseSumGivesTheSerialForces) {
+    for (std::uint64_t seed = 0; seed < TRICELL_MPI_CASES / 3 + 6; ++seed) {
+        SCOPED_TRACE(seed);
+        RandomSystem sys = random_system(seed);
+        std::mt19937_64 rng(seed + 2000);
+        Decomposition d(MPI_COMM_WORLD, random_dims(rng));
+        if (seed >= TRICELL_MPI_CASES / 3) { // the cutoff reaches past the nearest domains
+            d = Decomposition(MPI_COMM_WORLD, {{world_size(), 1, 1}});
+            const double width = sys.box().perpendicular_widths()[0] / world_size();
+            sys.cutoff = std::min(2.5 * width, sys.cutoff * 2);
+        } else if (seed % 2 == 1) {
+            random_bounds(d, rng);
+        }
+        const Box box = sys.box();
+        LocalAtoms atoms = deal(sys.positions);
+        tricell::mpi::migrate(d, box, atoms);
+        const NeighborOptions options = options_for(sys.cutoff, true);
+        tricell::mpi::DistributedSearch search;
+        search.build(d, box, atoms, options);
+        tricell::mpi::DistributedPairs pairs;
+        search.compute(pairs);
+        EXPECT_EQ(compare_with_serial(pairs, atoms, box, options, d.comm()), "");
+        const tricell::mpi::Halo& halo = search.halo();
+        std::vector<double> rows(4 * halo.size(), 0.0);
+        for (std::size_t k = 0; k < pairs.size(); ++k) {
+            ASSERT_EQ(halo.ids()[pairs.local_j[k]], pairs.j[k]);
+            const Eigen::Vector3d v(&pairs.vectors[3 * k]);
+            const PairForce p = soft_force(v, pairs.distances[k], sys.cutoff);
+            for (std::size_t c = 0; c < 3; ++c) {
+                rows[4 * pairs.owned[k] + c] += p.f[c];
+                rows[4 * pairs.local_j[k] + c] -= p.f[c];
+            }
+            rows[4 * pairs.owned[k] + 3] += p.e / 2;
+            rows[4 * pairs.local_j[k] + 3] += p.e / 2;
+        }
+        halo.reverse_sum(d, rows, 4);
+        std::vector<double> mine;
+        for (std::size_t a = 0; a < atoms.size(); ++a) {
+            mine.insert(mine.end(), {double(atoms.ids[a]), rows[4 * a], rows[4 * a + 1],
+                                     rows[4 * a + 2], rows[4 * a + 3]});
+        }
+        const std::vector<double> all = gather_to_root(mine, d.comm());
+        std::string verdict;
+        if (world_rank() == 0) {
+            const std::size_t n = sys.positions.size();
+            std::vector<double> expected(4 * n, 0.0), scale(n, 1e-300);
+            // Positions many boxes away carry rounding of eps |x| into every D, serial and
+            // distributed alike: the tolerance grows with |x| / (box size), 1 near the box.
+            double far = 0;
+            for (const Eigen::Vector3d& x : sys.positions) {
+                far = std::max(far, x.norm() / sys.h.norm());
+            }
+            const tricell::NeighborList serial =
+                tricell::compute_neighbors(box, sys.positions, options);
+            for (std::size_t k = 0; k < serial.size(); ++k) {
+                const PairForce p = soft_force(serial.vector(k), serial.distances()[k], sys.cutoff);
+                const std::size_t i = serial.i()[k], j = serial.j()[k];
+                for (std::size_t c = 0; c < 3; ++c) {
+                    expected[4 * i + c] += p.f[c];
+                    expected[4 * j + c] -= p.f[c];
+                }
+                expected[4 * i + 3] += p.e / 2;
+                expected[4 * j + 3] += p.e / 2;
+                scale[i] += p.f.norm() + p.e;
+                scale[j] += p.f.norm() + p.e;
+            }
+            if (all.size() != 5 * n) {
+                verdict = std::to_string(all.size() / 5) + " rows for " + std::to_string(n);
+            }
+            for (std::size_t r = 0; verdict.empty() && 5 * r < all.size(); ++r) {
+                const auto id = std::size_t(all[5 * r]);
+                for (std::size_t c = 0; c < 4; ++c) {
+                    if (!(std::abs(all[5 * r + 1 + c] - expected[4 * id + c]) <=
+                          1e-12 * (1 + far) * scale[id])) {
+                        verdict = "atom " + std::to_string(id) + " value " + std::to_string(c) +
+                                  ": " + std::to_string(all[5 * r + 1 + c]) + ", serial " +
+                                  std::to_string(expected[4 * id + c]);
+                    }
+                }
+            }
+        }
+        EXPECT_EQ(share_verdict(verdict, d.comm()), "");
+    }
+}
+
+// Halo::forward copies each owner's row into its ghosts (any width); a wrong size fails on
+// every rank with the message.
+TEST(MpiNeighbors, HaloForward_CopiesOwnersRowsIntoGhosts) {
+    const RandomSystem sys = random_system(3);
+    Decomposition d(MPI_COMM_WORLD);
+    const Box box = sys.box();
+    LocalAtoms atoms = deal(sys.positions);
+    tricell::mpi::migrate(d, box, atoms);
+    tricell::mpi::DistributedSearch search;
+    search.build(d, box, atoms, options_for(sys.cutoff, true));
+    const tricell::mpi::Halo& halo = search.halo();
+    for (std::size_t width : {std::size_t(1), std::size_t(3)}) {
+        std::vector<double> rows(width * halo.size(), std::nan(""));
+        for (std::size_t a = 0; a < halo.owned_count(); ++a) {
+            for (std::size_t c = 0; c < width; ++c) {
+                rows[width * a + c] = double(halo.ids()[a]) * 1.5 + double(c);
+            }
+        }
+        halo.forward(d, rows, width);
+        int wrong = 0;
+        for (std::size_t a = 0; a < halo.size(); ++a) {
+            for (std::size_t c = 0; c < width; ++c) {
+                wrong += rows[width * a + c] != double(halo.ids()[a]) * 1.5 + double(c);
+            }
+        }
+        MPI_Allreduce(MPI_IN_PLACE, &wrong, 1, MPI_INT, MPI_SUM, d.comm());
+        EXPECT_EQ(wrong, 0);
+        EXPECT_EQ(halo.comm_messages_sent(), int(halo.neighbor_ranks().size()));
+    }
+    std::vector<double> short_rows(world_rank() == 0 ? 1 : 4 * halo.size());
+    std::vector<double> right(4 * halo.size());
+    if (world_rank() == 0) {
+        EXPECT_THROW_MSG(halo.reverse_sum(d, short_rows, 4), tricell::InvalidArgument,
+                         "Halo::reverse_sum needs 4 values per local atom");
+    } else {
+        EXPECT_THROW(halo.reverse_sum(d, right, 4), tricell::InvalidArgument);
+    }
+}
+
 TEST(MpiNeighbors, SortedOutput_IsOrderedByIJS) {
     const RandomSystem sys = random_system(13);
     const Box box = sys.box();

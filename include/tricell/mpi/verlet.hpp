@@ -16,10 +16,13 @@
 // than the budget, a pair now within r_c was within r_l at the build (the serial list's
 // argument), so its j image is still among the ghosts, at its owner's current position. The
 // pairs of update() are mapped to global (i, j, S) by the rules of neighbors.hpp (full, or half
-// with the ownership rule).
+// with the ownership rule: Newton's third law across ranks, forces on ghosts summed back by
+// reverse_sum()). The local list is a Verlet list of the owned atoms' subset (no ghost-ghost
+// candidates).
 #pragma once
 
 #include <cstddef>
+#include <vector>
 
 #include "tricell/box.hpp"
 #include "tricell/mpi/atoms.hpp"
@@ -41,6 +44,15 @@ class TRICELL_MPI_API DistributedVerletList {
     /// wrapped or not) and box. When the ranks agree to rebuild, atoms migrate first: `atoms`
     /// (ids, positions, payload) may then change order and size. Returns true if it rebuilt.
     bool update(const Decomposition& decomposition, const Box& box, LocalAtoms& atoms);
+    /// Collective. Refreshes the ghosts' positions from their owners' current `atoms` (the same
+    /// atoms as the last update(), in the same order), without a search or a rebuild vote:
+    /// update() does this itself; call it alone to read fresh ghost positions (halo()) between
+    /// updates.
+    void forward(const Decomposition& decomposition, const Box& box, const LocalAtoms& atoms);
+    /// Collective. Halo::reverse_sum() of this list's halo: `width` doubles per local atom
+    /// (halo().size() rows: owned, then ghosts); each ghost row is added into its owner's row.
+    void reverse_sum(const Decomposition& decomposition, std::vector<double>& values,
+                     std::size_t width) const;
 
     const DistributedPairs& pairs() const { return pairs_; }
     const Halo& halo() const { return halo_; }
