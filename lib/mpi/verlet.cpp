@@ -50,7 +50,14 @@ bool DistributedVerletList::update(const Decomposition& decomposition, const Box
         detail::agreed(comm, [&] { local_.update(open, halo_.points()); });
     } else {
         built_ = false;
-        migrate(decomposition, box, atoms);
+        // Among the last halo's neighbour ranks when every atom's owner is one of them (an atom
+        // moves less than the halo reach in a Verlet interval), else MPI_Alltoall.
+        if (!halo_built_ || !migrate(decomposition, box, atoms, halo_.neighbor_ranks())) {
+            if (!halo_built_) {
+                migrate(decomposition, box, atoms);
+            }
+            ++alltoall_migrations_;
+        }
         halo_.build(decomposition, box, atoms.ids, atoms.points(), local_.list_radius());
         // Pairs of the owned atoms only (the first of the local atoms): no ghost-ghost pair.
         std::vector<std::uint32_t> owned(halo_.owned_count());
@@ -58,6 +65,7 @@ bool DistributedVerletList::update(const Decomposition& decomposition, const Box
         local_.set_query(std::move(owned));
         detail::agreed(comm, [&] { local_.rebuild(open, halo_.points()); });
         built_ = true;
+        halo_built_ = true;
         built_periodicity_ = box.periodicity();
         ++rebuild_count_;
     }

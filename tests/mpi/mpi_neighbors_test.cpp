@@ -3,6 +3,7 @@
 // combination of periodic axes, atoms far outside the box, random domain grids and boundaries,
 // cutoffs larger than a domain and than the box. Run under mpirun with 1, 2, 3, 4 and 8 ranks
 // (tests/CMakeLists.txt). Every rank draws the same random system from the seed.
+#include <algorithm>
 #include <random>
 #include <set>
 
@@ -356,6 +357,45 @@ TEST(MpiMigrate, EveryAtomReachesItsOwner_WithItsPayload) {
         const std::vector<std::uint64_t> before = atoms.ids;
         tricell::mpi::migrate(d, box, atoms);
         EXPECT_EQ(atoms.ids, before);
+    }
+}
+
+// Migration to halo neighbours only: after moves shorter than the halo reach every new owner is
+// a neighbour, and the result (ids, positions, payload, order) is migrate()'s; after long jumps
+// (some owner beyond the neighbours, with 8 ranks in a 8 x 1 x 1 grid) it falls back to it.
+TEST(MpiMigrate, AmongHaloNeighbors_SameAsMigrate) {
+    for (std::uint64_t seed = 0; seed < 8; ++seed) {
+        SCOPED_TRACE(seed);
+        std::mt19937_64 rng(seed);
+        const Eigen::Matrix3d h = random_box_matrix(rng, 8, 12, 0.5);
+        const Box box = Box::from_columns(h, tricell::Periodicity{{true, true, seed % 2 == 0}});
+        std::uniform_real_distribution<double> unit(0, 1);
+        std::vector<Eigen::Vector3d> x(300);
+        for (auto& p : x) {
+            p = h * Eigen::Vector3d(unit(rng), unit(rng), unit(rng));
+        }
+        Decomposition d(MPI_COMM_WORLD,
+                        seed < 4 ? random_dims(rng) : std::array<int, 3>{{world_size(), 1, 1}});
+        LocalAtoms atoms = deal(x, 2);
+        tricell::mpi::migrate(d, box, atoms);
+        const double reach = 0.08 * box.perpendicular_widths().minCoeff();
+        tricell::mpi::Halo halo;
+        halo.build(d, box, atoms.ids, atoms.points(), reach);
+        const bool jump = seed % 4 == 3;
+        std::normal_distribution<double> step(0, jump ? 5.0 : reach / 4);
+        for (double& v : atoms.positions) {
+            v += jump ? step(rng) * 3 : std::clamp(step(rng), -reach / 2, reach / 2);
+        }
+        LocalAtoms expected = atoms;
+        tricell::mpi::migrate(d, box, expected);
+        const bool near = tricell::mpi::migrate(d, box, atoms, halo.neighbor_ranks());
+        EXPECT_TRUE(near || jump);
+        if (jump && world_size() == 8 && d.dims()[0] == 8) {
+            EXPECT_FALSE(near);
+        }
+        EXPECT_EQ(atoms.ids, expected.ids);
+        EXPECT_EQ(atoms.positions, expected.positions);
+        EXPECT_EQ(atoms.payload, expected.payload);
     }
 }
 

@@ -9,7 +9,9 @@
 // the serial list (skin / 2 in a fixed box, less when the box deforms; see tricell/verlet.hpp),
 // and one MPI_Allreduce (MAX of displacement - budget) decides for everybody: if any atom
 // anywhere moved past the budget, every rank rebuilds (migration, halo, candidates); otherwise
-// every rank only filters its candidates.
+// every rank only filters its candidates. A rebuild's migration goes to the halo's neighbour
+// ranks only when every atom's new owner is one of them (the usual case), else through the
+// MPI_Alltoall of migrate().
 //
 // Why the ghosts need no reselection between builds: at the build every owned atom i was inside
 // its domain and every image of j within r_l of it was a ghost. While no atom has moved more
@@ -57,6 +59,9 @@ class TRICELL_MPI_API DistributedVerletList {
     const DistributedPairs& pairs() const { return pairs_; }
     const Halo& halo() const { return halo_; }
     std::size_t rebuild_count() const { return rebuild_count_; }
+    /// Rebuilds whose migration needed the MPI_Alltoall (the first, and any where some atom's
+    /// new owner was not a halo neighbour); the others exchanged with the neighbours only.
+    std::size_t alltoall_migrations() const { return alltoall_migrations_; }
     /// Forgets the build; the next update() rebuilds.
     void reset();
 
@@ -66,8 +71,10 @@ class TRICELL_MPI_API DistributedVerletList {
     VerletList local_;
     DistributedPairs pairs_;
     bool built_ = false;
+    bool halo_built_ = false; // on every rank alike: at the same collective rebuilds
     Periodicity built_periodicity_;
     std::size_t rebuild_count_ = 0;
+    std::size_t alltoall_migrations_ = 0;
 };
 
 } // namespace tricell::mpi
