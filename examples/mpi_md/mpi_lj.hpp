@@ -28,13 +28,16 @@ class MpiLjSimulation {
     static constexpr std::size_t velocity = 0; // payload columns
     static constexpr std::size_t force = 3;
 
+    /// `quantities`: what the pairs store besides i and j; the force loop needs D only (as the
+    /// serial md_lj), tests comparing the pairs with a serial list ask for all.
     MpiLjSimulation(const tricell::mpi::Decomposition& decomposition, const md_lj::LjSystem& sys,
-                    const md_lj::MdOptions& options)
+                    const md_lj::MdOptions& options,
+                    const tricell::Quantities& quantities = tricell::Quantities{false, false, true})
         : decomposition_(decomposition), box_(sys.box), options_(options) {
         tricell::VerletOptions verlet;
         verlet.neighbors.cutoff = options.cutoff;
         verlet.neighbors.cells_per_cutoff = options.cells_per_cutoff;
-        verlet.neighbors.quantities = tricell::Quantities{true, true, true}; // tests compare all
+        verlet.neighbors.quantities = quantities;
         verlet.neighbors.half = true;
         verlet.skin = options.skin;
         list_ = tricell::mpi::DistributedVerletList(verlet);

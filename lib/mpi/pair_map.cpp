@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <numeric>
 #include <tuple>
+#include <type_traits>
 
 namespace tricell::mpi {
 
@@ -16,7 +17,7 @@ NeighborOptions local_options(const NeighborOptions& caller, std::size_t owned) 
     local.half = true;
     local.sorted = false;
     local.grouped = false;
-    local.quantities = Quantities{false, true, true};
+    local.quantities = Quantities{false, caller.quantities.distances, caller.quantities.vectors};
     local.radii.clear(); // per local atom: set by the caller from the halo
     local.species.clear();
     return local;
@@ -54,15 +55,75 @@ void sort_pairs(DistributedPairs& p) {
 
 } // namespace
 
+namespace {
+
+// Output columns of map_pairs, written through raw pointers into arrays sized for the most
+// pairs there can be, trimmed to the pairs kept at the end.
+struct MappedColumns {
+    std::uint32_t* owned;
+    std::uint32_t* local_j;
+    std::uint64_t* i;
+    std::uint64_t* j;
+    std::int32_t* shifts;
+    double* distances;
+    double* vectors;
+};
+
+// Every local pair a -> b with a owned (and b -> a with b owned), kept by the half rule when
+// Half. Returns the number of pairs written.
+template <bool Half, bool Shifts, bool Distances, bool Vectors>
+std::size_t map_columns(std::size_t count, const std::uint32_t* li, const std::uint32_t* lj,
+                        const double* distances, const double* vectors, std::size_t owned,
+                        const std::uint64_t* ids, const std::int32_t* images, MappedColumns out) {
+    std::size_t n = 0;
+    auto emit = [&](std::size_t a, std::size_t b, double sign, std::size_t k) {
+        std::int32_t s[3];
+        for (std::size_t c = 0; c < 3; ++c) {
+            s[c] = images[3 * a + c] - images[3 * b + c];
+        }
+        if (Half && !canonical(ids[a], ids[b], s)) {
+            return;
+        }
+        out.owned[n] = std::uint32_t(a);
+        out.local_j[n] = std::uint32_t(b);
+        out.i[n] = ids[a];
+        out.j[n] = ids[b];
+        if constexpr (Shifts) {
+            for (std::size_t c = 0; c < 3; ++c) {
+                out.shifts[3 * n + c] = s[c];
+            }
+        }
+        if constexpr (Distances) {
+            out.distances[n] = distances[k];
+        }
+        if constexpr (Vectors) {
+            for (std::size_t c = 0; c < 3; ++c) {
+                out.vectors[3 * n + c] = sign * vectors[3 * k + c];
+            }
+        }
+        ++n;
+    };
+    for (std::size_t k = 0; k < count; ++k) {
+        const std::size_t a = li[k];
+        const std::size_t b = lj[k];
+        if (a < owned) {
+            emit(a, b, 1.0, k);
+        }
+        if (b < owned) {
+            emit(b, a, -1.0, k);
+        }
+    }
+    return n;
+}
+
+template <class F> std::size_t with_flag(bool flag, F f) {
+    return flag ? f(std::true_type{}) : f(std::false_type{});
+}
+
+} // namespace
+
 void map_pairs(const NeighborList& local, const Halo& halo, bool half, bool sorted,
                const Quantities& quantities, DistributedPairs& out) {
-    const std::size_t owned = halo.owned_count();
-    const auto& ids = halo.ids();
-    const auto& images = halo.images();
-    const auto& li = local.i();
-    const auto& lj = local.j();
-    const double* distances = local.distances().data();
-    const double* vectors = local.vectors().data();
     // Shifts are always computed (the half rule needs them) and kept when asked or sorting.
     const bool keep_shifts = quantities.shifts || sorted;
     // Sized for the most pairs there can be (both orientations of every local pair), then cut.
@@ -74,42 +135,24 @@ void map_pairs(const NeighborList& local, const Halo& halo, bool half, bool sort
     out.shifts.resize(keep_shifts ? 3 * most : 0);
     out.distances.resize(quantities.distances ? most : 0);
     out.vectors.resize(quantities.vectors ? 3 * most : 0);
-    std::size_t n = 0;
-    auto emit = [&](std::size_t a, std::size_t b, double sign, std::size_t k) {
-        std::int32_t s[3];
-        for (std::size_t c = 0; c < 3; ++c) {
-            s[c] = images[3 * a + c] - images[3 * b + c];
-        }
-        if (half && !canonical(ids[a], ids[b], s)) {
-            return;
-        }
-        out.owned[n] = std::uint32_t(a);
-        out.local_j[n] = std::uint32_t(b);
-        out.i[n] = ids[a];
-        out.j[n] = ids[b];
-        if (keep_shifts) {
-            std::copy(s, s + 3, &out.shifts[3 * n]);
-        }
-        if (quantities.distances) {
-            out.distances[n] = distances[k];
-        }
-        if (quantities.vectors) {
-            for (std::size_t c = 0; c < 3; ++c) {
-                out.vectors[3 * n + c] = sign * vectors[3 * k + c];
-            }
-        }
-        ++n;
+    const MappedColumns columns{out.owned.data(),  out.local_j.data(), out.i.data(),
+                                out.j.data(),      out.shifts.data(),  out.distances.data(),
+                                out.vectors.data()};
+    auto run = [&](auto half_rule, auto shifts, auto distances, auto vectors) {
+        return map_columns<decltype(half_rule)::value, decltype(shifts)::value,
+                           decltype(distances)::value, decltype(vectors)::value>(
+            local.size(), local.i().data(), local.j().data(), local.distances().data(),
+            local.vectors().data(), halo.owned_count(), halo.ids().data(), halo.images().data(),
+            columns);
     };
-    for (std::size_t k = 0; k < local.size(); ++k) {
-        const std::size_t a = li[k];
-        const std::size_t b = lj[k];
-        if (a < owned) {
-            emit(a, b, 1.0, k);
-        }
-        if (b < owned) {
-            emit(b, a, -1.0, k);
-        }
-    }
+    // One instantiation per combination of the rule and the columns (no branch per pair).
+    const std::size_t n = with_flag(half, [&](auto h) {
+        return with_flag(keep_shifts, [&](auto s) {
+            return with_flag(quantities.distances, [&](auto d) {
+                return with_flag(quantities.vectors, [&](auto v) { return run(h, s, d, v); });
+            });
+        });
+    });
     out.owned.resize(n);
     out.local_j.resize(n);
     out.i.resize(n);

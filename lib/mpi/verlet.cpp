@@ -14,7 +14,9 @@ DistributedVerletList::DistributedVerletList(const VerletOptions& options) : opt
     options_.validate();
     VerletOptions local = options_;
     local.neighbors.half = true;
-    local.neighbors.quantities = Quantities{false, true, true};
+    // d and D as the caller asks; S comes from the halo images (pair_map.hpp).
+    local.neighbors.quantities = Quantities{false, options_.neighbors.quantities.distances,
+                                            options_.neighbors.quantities.vectors};
     local_ = VerletList(local);
 }
 

@@ -36,7 +36,7 @@ TEST(MpiVerlet, LjDynamics_NewtonHalfListsMatchSerialEveryStep_AtomsCrossDomains
     tricell::mpi::Decomposition d(MPI_COMM_WORLD);
     const md_lj::LjSystem system = md_lj::make_fcc(4, 0.8, 1.0, 3);
     md_lj::MdOptions options;
-    mpi_md::MpiLjSimulation sim(d, system, options);
+    mpi_md::MpiLjSimulation sim(d, system, options, tricell::Quantities{true, true, true});
     md_lj::LjSimulation serial(system, options);
     const std::vector<std::uint64_t> first_owned = sim.atoms().ids;
     const int steps = 60;
