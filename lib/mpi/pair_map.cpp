@@ -69,21 +69,17 @@ struct MappedColumns {
     double* vectors;
 };
 
-// Every local pair a -> b with a owned (and b -> a with b owned), kept by the half rule when
-// Half. Returns the number of pairs written.
+// Every local pair a -> b with a owned (and b -> a with b owned); with Half only the canonical
+// orientation of the pair, kept when its i end is owned (exactly one of the two orientations is
+// canonical, so the rule is decided once per local pair).
 template <bool Half, bool Shifts, bool Distances, bool Vectors>
 std::size_t map_columns(std::size_t count, const std::uint32_t* li, const std::uint32_t* lj,
                         const double* distances, const double* vectors, std::size_t owned,
                         const std::uint64_t* ids, const std::int32_t* images, MappedColumns out) {
     std::size_t n = 0;
-    auto emit = [&](std::size_t a, std::size_t b, double sign, std::size_t k) {
-        std::int32_t s[3];
-        for (std::size_t c = 0; c < 3; ++c) {
-            s[c] = images[3 * a + c] - images[3 * b + c];
-        }
-        if (Half && !canonical(ids[a], ids[b], s)) {
-            return;
-        }
+    // Writes a -> b with S = sign (c_a - c_b) given as s (the pair's a -> b shift).
+    auto emit = [&](std::size_t a, std::size_t b, double sign, std::size_t k,
+                    const std::int32_t* s) {
         out.owned[n] = std::uint32_t(a);
         out.local_j[n] = std::uint32_t(b);
         out.i[n] = ids[a];
@@ -106,11 +102,26 @@ std::size_t map_columns(std::size_t count, const std::uint32_t* li, const std::u
     for (std::size_t k = 0; k < count; ++k) {
         const std::size_t a = li[k];
         const std::size_t b = lj[k];
-        if (a < owned) {
-            emit(a, b, 1.0, k);
+        std::int32_t s[3], r[3];
+        for (std::size_t c = 0; c < 3; ++c) {
+            s[c] = images[3 * a + c] - images[3 * b + c];
+            r[c] = -s[c];
         }
-        if (b < owned) {
-            emit(b, a, -1.0, k);
+        if constexpr (Half) {
+            if (canonical(ids[a], ids[b], s)) {
+                if (a < owned) {
+                    emit(a, b, 1.0, k, s);
+                }
+            } else if (b < owned) {
+                emit(b, a, -1.0, k, r);
+            }
+        } else {
+            if (a < owned) {
+                emit(a, b, 1.0, k, s);
+            }
+            if (b < owned) {
+                emit(b, a, -1.0, k, r);
+            }
         }
     }
     return n;
