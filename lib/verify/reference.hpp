@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "search/half_orientation.hpp"
 #include "tricell/box.hpp"
 #include "tricell/neighbor_list.hpp"
 #include "tricell/types.hpp"
@@ -45,13 +46,9 @@ struct ReferencePairs {
 ReferencePairs reference_pairs(const Box& box, PointsView positions, const NeighborOptions& options,
                                const PairCutoff& cutoff);
 
-/// Whether (i, j, S) is the orientation of a half list: i < j, or i == j with S
-/// lexicographically positive.
+/// Whether (i, j, S) is the orientation of a half list (search/half_orientation.hpp).
 inline bool canonical_orientation(const PairKey& key) {
-    if (key[0] != key[1]) {
-        return key[0] < key[1];
-    }
-    return key[2] > 0 || (key[2] == 0 && (key[3] > 0 || (key[3] == 0 && key[4] > 0)));
+    return half_orientation(key[0], key[1], key[2], key[3], key[4]);
 }
 
 } // namespace tricell::detail
