@@ -11,7 +11,6 @@ packages=(
     libbenchmark-dev
     libsymspg-dev gemmi-dev tao-pegtl-dev libstb-dev   # tricell::io (spglib, gemmi)
     python3-pymatgen python3-ase python3-numpy          # fixtures and peer benchmarks
-    python3-mdanalysis lammps   # peers of benchmarks/compare only (skipped when missing; no test uses them)
     clang-format
     gfortran                   # the Fortran module and its tests
     pybind11-dev python3-dev python3-pytest   # the Python module and its tests
