@@ -27,6 +27,7 @@
 #include <Eigen/Core>
 
 #include "search/distance_kernel.hpp"
+#include "search/half_orientation.hpp"
 #include "search/pair_sink.hpp"
 #include "tricell/neighbor_list.hpp"
 
@@ -462,8 +463,7 @@ class CandidateScanner {
         if (reduced_frame_) {
             caller = to_caller_ * caller;
         }
-        return caller[0] < 0 ||
-               (caller[0] == 0 && (caller[1] < 0 || (caller[1] == 0 && caller[2] < 0)));
+        return lexicographically_positive(-caller[0], -caller[1], -caller[2]);
     }
 
     const double* x_;

@@ -48,37 +48,45 @@ py::sequence checked_sequence(const py::handle& value, const char* name) {
     return py::reinterpret_borrow<py::sequence>(value);
 }
 
+} // namespace
+
+void set_cutoff(const py::object& cutoff, NeighborOptions& options) {
+    if (py::isinstance<py::dict>(cutoff)) {
+        for (const auto& entry : cutoff.cast<py::dict>()) {
+            try {
+                const auto key = entry.first.cast<std::pair<std::int32_t, std::int32_t>>();
+                options.species_cutoffs.push_back(
+                    SpeciesCutoff{key.first, key.second, entry.second.cast<double>()});
+            } catch (const py::cast_error&) {
+                throw py::value_error("a cutoff dict maps pairs of integer species to "
+                                      "cutoffs (got " +
+                                      py::repr(entry.first).cast<std::string>() + ": " +
+                                      py::repr(entry.second).cast<std::string>() + ")");
+            }
+        }
+        if (options.species_cutoffs.empty()) {
+            throw py::value_error("the cutoff dict of species pairs is empty");
+        }
+    } else if (!cutoff.is_none()) {
+        try {
+            options.cutoff = cutoff.cast<double>();
+        } catch (const py::cast_error&) {
+            throw py::value_error("cutoff must be a number, a dict of species pairs or None "
+                                  "(got " +
+                                  py::repr(cutoff).cast<std::string>() + ")");
+        }
+    }
+}
+
+namespace {
+
 class PyNeighborList {
   public:
     // cutoff: a float (one cutoff), a dict {(species a, species b): cutoff} (a per-species-pair
     // table; compute() then needs species=) or None (compute() then needs radii=).
     PyNeighborList(const py::object& cutoff, bool full, bool sorted, int threads,
                    const std::string& backend, std::size_t max_pairs, bool grouped) {
-        if (py::isinstance<py::dict>(cutoff)) {
-            for (const auto& entry : cutoff.cast<py::dict>()) {
-                try {
-                    const auto key = entry.first.cast<std::pair<std::int32_t, std::int32_t>>();
-                    options_.species_cutoffs.push_back(
-                        SpeciesCutoff{key.first, key.second, entry.second.cast<double>()});
-                } catch (const py::cast_error&) {
-                    throw py::value_error("a cutoff dict maps pairs of integer species to "
-                                          "cutoffs (got " +
-                                          py::repr(entry.first).cast<std::string>() + ": " +
-                                          py::repr(entry.second).cast<std::string>() + ")");
-                }
-            }
-            if (options_.species_cutoffs.empty()) {
-                throw py::value_error("the cutoff dict of species pairs is empty");
-            }
-        } else if (!cutoff.is_none()) {
-            try {
-                options_.cutoff = cutoff.cast<double>();
-            } catch (const py::cast_error&) {
-                throw py::value_error("cutoff must be a number, a dict of species pairs or None "
-                                      "(got " +
-                                      py::repr(cutoff).cast<std::string>() + ")");
-            }
-        }
+        set_cutoff(cutoff, options_);
         per_atom_radii_ = cutoff.is_none();
         options_.half = !full;
         options_.sorted = sorted;
