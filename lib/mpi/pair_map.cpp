@@ -102,10 +102,13 @@ std::size_t map_columns(std::size_t count, const std::uint32_t* li, const std::u
     for (std::size_t k = 0; k < count; ++k) {
         const std::size_t a = li[k];
         const std::size_t b = lj[k];
-        std::int32_t s[3], r[3];
-        for (std::size_t c = 0; c < 3; ++c) {
-            s[c] = images[3 * a + c] - images[3 * b + c];
-            r[c] = -s[c];
+        // S is needed to store it, or to orient the pair of an atom with its own image.
+        std::int32_t s[3] = {0, 0, 0}, r[3] = {0, 0, 0};
+        if (Shifts || ids[a] == ids[b]) {
+            for (std::size_t c = 0; c < 3; ++c) {
+                s[c] = images[3 * a + c] - images[3 * b + c];
+                r[c] = -s[c];
+            }
         }
         if constexpr (Half) {
             if (canonical(ids[a], ids[b], s)) {
