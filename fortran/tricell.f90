@@ -42,6 +42,8 @@ module tricell
         integer(c_size_t) :: max_pairs
         type(c_ptr) :: radii, species, species_cutoffs
         integer(c_size_t) :: species_cutoff_count
+        type(c_ptr) :: query
+        integer(c_size_t) :: query_count
     end type
 
     type, bind(c) :: c_verlet_options

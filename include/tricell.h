@@ -133,6 +133,13 @@ typedef struct tricell_neighbor_options {
     const int32_t* species;
     const tricell_species_cutoff* species_cutoffs;
     size_t species_cutoff_count;
+    /* Pairs of a subset (NULL: every point; an empty subset is a non-NULL query with
+     * query_count 0). query: query_count indices of the positions, each < n and listed once. A full
+     * list holds the (i, j, S) with i in the query; a half list each pair with both ends in it once
+     * (canonical orientation) and each pair with one end in it once, oriented from that end. Every
+     * point is a neighbour; read during the call only. */
+    const uint32_t* query;
+    size_t query_count;
 } tricell_neighbor_options;
 
 TRICELL_C_API tricell_status tricell_neighbor_options_init(tricell_neighbor_options* options);
@@ -169,6 +176,40 @@ typedef struct tricell_pairs {
 
 TRICELL_C_API tricell_status tricell_neighbor_list_pairs(const tricell_neighbor_list* list,
                                                          tricell_pairs* pairs);
+
+/* ---- Verifying a list ------------------------------------------------------------------- */
+
+/* The verdict of tricell_verify(): counts of each kind of difference and the first one in words
+ * (truncated to the buffer). */
+typedef struct tricell_verify_report {
+    int ok;              /* 1: the list is right; 0: see message */
+    size_t entries;      /* entries of the list examined */
+    size_t expected;     /* pairs the reference found */
+    size_t matched;      /* entries that matched a reference pair */
+    size_t near_cutoff;  /* pairs within rounding of their cutoff, accepted either way */
+    size_t missing;      /* reference pairs the list lacks */
+    size_t extra;        /* listed pairs that are not pairs */
+    size_t duplicates;   /* entries repeating a pair (in a half list: in either orientation) */
+    size_t rule_breaks;  /* an index out of range, (i, i, 0), a shift along an open axis */
+    size_t wrong_values; /* a listed d or D that differs from the one of the positions */
+    char reference[32];  /* "brute force", "the dense backend" or "the hash backend" */
+    char message[512];   /* "ok: ..." or the first difference, e.g. "pair (3, 17, [0 1 0]) at
+                          * distance 2.31 < cutoff 2.5 is missing" */
+} tricell_verify_report;
+
+/* Checks the list `pairs` (tricell's own from tricell_neighbor_list_pairs(), or arrays of any
+ * code filled in by hand: size, i, j, shifts, and optionally distances and vectors; offsets and
+ * atoms are ignored) against an independent search of the n positions in box with options
+ * (cutoff, or radii or species with species_cutoffs, and half say which list is expected;
+ * threads and max_pairs bound the reference search; the other fields are ignored). A full list
+ * must hold both orientations of every pair, a half list either orientation of each pair
+ * exactly once. shifts may be NULL only when no axis is periodic. Returns TRICELL_OK whenever
+ * the check ran, whatever its verdict (report->ok); an error status only for bad arguments (a
+ * NULL pointer, a non-finite position, invalid options), with report untouched. */
+TRICELL_C_API tricell_status tricell_verify(const tricell_box* box, const double* positions,
+                                            size_t n, const tricell_neighbor_options* options,
+                                            const tricell_pairs* pairs,
+                                            tricell_verify_report* report);
 
 /* ---- Batches of small structures ---------------------------------------------------------- */
 

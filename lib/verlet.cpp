@@ -103,6 +103,11 @@ void VerletList::rebuild(const Box& box, PointsView positions) {
     }
 }
 
+void VerletList::set_query(std::optional<std::vector<std::uint32_t>> query) {
+    options_.neighbors.query = std::move(query);
+    reset();
+}
+
 void VerletList::build(const Box& box, PointsView positions) {
     tracker_.reset();
     NeighborOptions search_options = options_.neighbors;

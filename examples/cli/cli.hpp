@@ -17,6 +17,9 @@ class UsageError : public std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
+/// The exit status of `neighbors --verify` when the list fails its check.
+constexpr int verify_failed = 3;
+
 class Arguments;
 
 /// One line of the usage text (tricell --help): "NAME ARGS" and what it does, in one sentence

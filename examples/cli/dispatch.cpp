@@ -6,7 +6,8 @@
 // all come from the table, so a new subcommand is one row here plus its own file.
 //
 // Exit status: 0 on success, 1 when the input or a value is rejected (a bad file, a cutoff
-// <= 0), 2 when the command line cannot be parsed. Errors are one line on stderr:
+// <= 0), 2 when the command line cannot be parsed, 3 when `neighbors --verify` finds the list
+// wrong (verify_failed). Errors are one line on stderr:
 // "tricell: FILE:LINE: what is wrong" or "tricell: what is wrong".
 #include <algorithm>
 #include <cstdio>
@@ -93,7 +94,8 @@ FILE is a CIF (*.cif), an extended XYZ (*.xyz, *.extxyz) or a VASP 5 POSCAR (POS
 *.vasp, *.poscar); --input-format cif|xyz|poscar overrides the guess from the name.
 Run 'tricell COMMAND --help' for the options of a command.
 
-Exit status: 0 on success, 1 for a rejected input or value, 2 for a malformed command line.
+Exit status: 0 on success, 1 for a rejected input or value, 2 for a malformed command line,
+3 when 'neighbors --verify' finds a difference.
 )";
 }
 

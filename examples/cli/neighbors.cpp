@@ -6,6 +6,7 @@
 #include <tricell/analysis/nearest.hpp>
 #include <tricell/error.hpp>
 #include <tricell/neighbor_list.hpp>
+#include <tricell/verify.hpp>
 
 #include "cli.hpp"
 #include "pair_table.hpp"
@@ -17,7 +18,7 @@ namespace tricell::cli {
 // The text of 'tricell neighbors --help', for the row of dispatch.cpp's table.
 std::string neighbors_help() {
     return R"(usage: tricell neighbors FILE --cutoff R [--half] [--sorted] [--format tsv|csv|json]
-                         [--output PATH] [--max-pairs N] [--threads T] [--quiet]
+                         [--output PATH] [--max-pairs N] [--threads T] [--verify] [--quiet]
                          [--input-format cif|xyz|poscar]
        tricell neighbors FILE --nearest K [--format tsv|csv|json] [--output PATH]
                          [--max-pairs N] [--threads T] [--quiet]
@@ -45,6 +46,10 @@ Options:
                       the number of atoms above N
   --threads T         threads of the search and of the formatting of the table, 0 = all
                       hardware threads (default 1); the output is the same for any T
+  --verify            after writing the list, check it against an independent search (brute
+                      force, or another backend for large systems) and the list rules; prints
+                      'tricell: verify: ok: ...' or 'tricell: verify: FAILED: <the first
+                      difference>' on stderr and exits with status 3 on a mismatch
   --quiet             no progress on stderr (shown only when stderr is a terminal)
   --input-format F    cif, xyz or poscar, instead of the guess from the file name
   -h, --help          this help
@@ -64,6 +69,7 @@ int run_neighbors(Arguments& arguments) {
     bool have_cutoff = false;
     std::size_t nearest = 0;
     bool quiet = false;
+    bool verify_list = false;
     TableFormat format = TableFormat::tsv;
     io::ReadOptions read_options;
     NeighborOptions options;
@@ -83,6 +89,8 @@ int run_neighbors(Arguments& arguments) {
             options.half = true;
         } else if (arguments.flag("--sorted")) {
             options.sorted = true;
+        } else if (arguments.flag("--verify")) {
+            verify_list = true;
         } else if (take_format(arguments, format)) {
         } else if (take_quiet(arguments, quiet)) {
         } else if (arguments.option("--output")) {
@@ -95,8 +103,8 @@ int run_neighbors(Arguments& arguments) {
     }
     require_file(arguments, file);
     if (nearest > 0) {
-        if (have_cutoff || options.half || options.sorted) {
-            arguments.fail("--nearest takes no --cutoff, --half or --sorted");
+        if (have_cutoff || options.half || options.sorted || verify_list) {
+            arguments.fail("--nearest takes no --cutoff, --half, --sorted or --verify");
         }
     } else if (!have_cutoff) {
         arguments.fail("missing --cutoff R or --nearest K");
@@ -128,6 +136,12 @@ int run_neighbors(Arguments& arguments) {
     write_text(output, [&](TextSink& sink) {
         write_pairs(sink, list, format, header, options.threads, show_progress);
     });
+    if (verify_list) {
+        const VerifyReport report = verify(structure.box, structure.positions, options, list);
+        std::fprintf(stderr, "tricell: verify: %s%s\n",
+                     report.ok ? "" : "FAILED: ", report.message.c_str());
+        return report.ok ? 0 : verify_failed;
+    }
     return 0;
 }
 

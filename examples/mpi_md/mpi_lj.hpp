@@ -4,14 +4,17 @@
 // Every rank starts from the same global system (md_lj::make_fcc), keeps the atoms it owns in a
 // tricell::mpi::LocalAtoms with velocity and force as the payload (6 doubles per atom, moved with
 // the atom when it migrates), and takes its pairs from a tricell::mpi::DistributedVerletList of
-// FULL lists: each rank sums the force on its own atoms only, so no force goes back to a ghost's
-// owner (each pair is computed on both sides, twice the pair work of a half list with reverse
-// communication, and no extra message). The potential energy is half the sum over the full
-// pairs. Integration (velocity Verlet, positions wrapped after every drift) and the potential are
-// md_lj's, so the energies match the serial md_lj::LjSimulation to round-off.
+// HALF lists with Newton's third law across ranks: each pair, owned-owned or owned-ghost, is on
+// one rank only, which adds its force to i and the opposite to j's row (a ghost's row when j is
+// a ghost); reverse_sum() then adds every ghost's row into its owner's force, one message per
+// neighbour rank. Each pair force is computed once, as in the serial md_lj. The potential energy
+// is the sum over the half pairs. Integration (velocity Verlet, positions wrapped after every
+// drift) and the potential are md_lj's, so the energies match the serial md_lj::LjSimulation to
+// round-off.
 #pragma once
 
 #include <cstddef>
+#include <vector>
 
 #include <mpi.h>
 
@@ -32,6 +35,7 @@ class MpiLjSimulation {
         verlet.neighbors.cutoff = options.cutoff;
         verlet.neighbors.cells_per_cutoff = options.cells_per_cutoff;
         verlet.neighbors.quantities = tricell::Quantities{true, true, true}; // tests compare all
+        verlet.neighbors.half = true;
         verlet.skin = options.skin;
         list_ = tricell::mpi::DistributedVerletList(verlet);
         // Deal the atoms round robin; the first update migrates them to their owners.
@@ -106,22 +110,27 @@ class MpiLjSimulation {
         const double cutoff_sq = options_.cutoff * options_.cutoff;
         const double inv_rc6 = 1 / (cutoff_sq * cutoff_sq * cutoff_sq);
         const double energy_shift = 4 * inv_rc6 * (inv_rc6 - 1);
-        for (std::size_t a = 0; a < atoms_.size(); ++a) {
-            for (std::size_t k = 0; k < 3; ++k) {
-                atoms_.payload[6 * a + force + k] = 0;
-            }
-        }
+        // Forces on every local atom (owned, then ghosts), summed into the owners afterwards.
+        forces_.assign(3 * list_.halo().size(), 0.0);
         double potential = 0;
         for (std::size_t k = 0; k < pairs.size(); ++k) {
             const Eigen::Vector3d r(pairs.vectors[3 * k], pairs.vectors[3 * k + 1],
                                     pairs.vectors[3 * k + 2]);
             const double inv_r2 = 1 / r.squaredNorm();
             const double inv_r6 = inv_r2 * inv_r2 * inv_r2;
-            potential += 0.5 * (4 * inv_r6 * (inv_r6 - 1) - energy_shift);
+            potential += 4 * inv_r6 * (inv_r6 - 1) - energy_shift;
             const Eigen::Vector3d f = (24 * inv_r6 * (2 * inv_r6 - 1) * inv_r2) * r;
-            double* fi = &atoms_.payload[6 * pairs.owned[k] + force];
+            double* fi = &forces_[3 * pairs.owned[k]];
+            double* fj = &forces_[3 * pairs.local_j[k]];
             for (int c = 0; c < 3; ++c) {
                 fi[c] -= f[c];
+                fj[c] += f[c];
+            }
+        }
+        list_.reverse_sum(decomposition_, forces_, 3);
+        for (std::size_t a = 0; a < atoms_.size(); ++a) {
+            for (std::size_t c = 0; c < 3; ++c) {
+                atoms_.payload[6 * a + force + c] = forces_[3 * a + c];
             }
         }
         potential_ = sum(potential);
@@ -132,6 +141,7 @@ class MpiLjSimulation {
     md_lj::MdOptions options_;
     tricell::mpi::DistributedVerletList list_;
     tricell::mpi::LocalAtoms atoms_;
+    std::vector<double> forces_;
     double potential_ = 0;
     std::size_t steps_ = 0;
 };

@@ -3,8 +3,10 @@
 //
 //   decomposition.hpp  the grid of domains (MPI_Dims_create or given), per-axis boundaries
 //   atoms.hpp          the atoms a rank owns (id, caller position, payload) and migrate()
-//   halo.hpp           ghosts within the cutoff of a domain, with their image shifts
-//   neighbors.hpp      full and half lists of the owned atoms (the ownership rule)
+//   halo.hpp           ghosts within the cutoff of a domain, with their image shifts;
+//                      forward() and reverse_sum() of per-atom values
+//   neighbors.hpp      full and half lists of the owned atoms (the ownership rule, Newton's
+//                      third law across ranks)
 //   verlet.hpp         the distributed Verlet list (rebuild agreed by MPI_Allreduce)
 //   balance.hpp        boundaries from the E[n], E[n^2] occupancy-moment work model
 //
@@ -20,14 +22,16 @@
 // rank in the halo (no staged forwarding along axes), which is what keeps a halo several domains
 // deep exact, at the price of M messages instead of 6. Per Verlet step: one halo update (M
 // messages), four small MPI_Allreduce (input and keep-the-build vote, the halo's input check, the
-// displacement decision, the refresh's error check), each O(log P). Per rebuild additionally: a
-// migration (one MPI_Alltoall of counts, O(P) per rank, then an MPI_Alltoallv that only carries
-// atoms to their new owners), a halo build (M messages) and the local build. So the terms that
-// grow with P are the Allreduce latencies (log P) and the Alltoall of counts at rebuilds (P),
-// about 40 kB per rank per rebuild at P = 10^4; neighbour-only migration (when every atom's
-// new owner is a halo neighbour, the usual case after one Verlet interval) would remove the
-// latter. Local work per rank is the serial search over n (1 + g) atoms, ghost-ghost pairs
-// included (the serial search has no "pairs of a subset" query), plus the full-list force loop.
+// displacement decision, the refresh's error check), each O(log P), and, with Newton's third
+// law, one reverse_sum (M messages). Per rebuild additionally: a migration among the halo's
+// neighbour ranks (one MPI_Allreduce vote, then M messages) whenever every atom's new owner is
+// one of them, the usual case after one Verlet interval, else the fallback of one MPI_Alltoall
+// of counts (O(P) per rank, about 40 kB at P = 10^4) and an MPI_Alltoallv; a halo build (M
+// messages) and the local build. So only the Allreduce latencies (log P) grow with P, and the
+// Alltoall when atoms jump past the halo. Local work per rank is the subset search
+// (NeighborOptions::query) of the n owned atoms against the n (1 + g) local ones (no
+// ghost-ghost pair is searched), plus the force loop over the half list (each pair once over all ranks) and one reverse_sum of the ghosts' forces per
+// step: M messages, 8 w g n bytes for w doubles per ghost (24 g n for forces).
 //     n = 500:    l = 8.5,  g = 3.53 (r = 2.8),  9.21 (r = 5.0)
 //     n = 4000:   l = 17.1, g = 1.34 (r = 2.8),  2.98 (r = 5.0)
 //     n = 32000:  l = 34.2, g = 0.58 (r = 2.8),  1.16 (r = 5.0)

@@ -29,6 +29,7 @@
 #include <cstdint>
 #include <memory>
 #include <new>
+#include <optional>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -84,6 +85,14 @@ struct TRICELL_API NeighborOptions {
     std::vector<SpeciesCutoff> species_cutoffs;
     /// Report each pair once (canonical orientation) instead of both orientations.
     bool half = false;
+    /// Pairs of a subset: when set, only the pairs of these points (indices into the positions,
+    /// each < N and listed once) are reported, with every point as a neighbour. A full list
+    /// holds every (i, j, S) of the full list with i in the query; a half list each pair with
+    /// both ends in the query once (canonically oriented) and each pair with one end in it once,
+    /// oriented from that end (i in the query). The search costs what the query's pairs cost,
+    /// not what all points' pairs do. Unset: every point (a query of every point gives the
+    /// same list).
+    std::optional<std::vector<std::uint32_t>> query;
     /// Sort by i, then j, then S lexicographically, and fill NeighborList::offsets().
     bool sorted = false;
     /// Group the pairs by i (CSR) and fill NeighborList::offsets(): atom i's pairs are

@@ -14,4 +14,5 @@
 #include "tricell/stencil.hpp"
 #include "tricell/tuning.hpp"
 #include "tricell/types.hpp"
+#include "tricell/verify.hpp"
 #include "tricell/verlet.hpp"

@@ -24,6 +24,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -85,6 +86,9 @@ class TRICELL_API VerletList {
     bool update(const Box& box, PointsView positions);
     /// Rebuilds the candidates unconditionally, then refreshes as update() does.
     void rebuild(const Box& box, PointsView positions);
+    /// Pairs of a subset (NeighborOptions::query, checked at the next build): replaces
+    /// options().neighbors.query and forgets the candidates, so the next update() rebuilds.
+    void set_query(std::optional<std::vector<std::uint32_t>> query);
 
     /// True when the candidates may miss a pair: nothing built yet, a different atom count or
     /// periodicity, or some atom displaced (minimum image, build frame) by more than

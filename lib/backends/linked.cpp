@@ -62,6 +62,9 @@ class LinkedBackend final : public Backend {
                 const bool own = d[0] == 0 && d[1] == 0 && d[2] == 0;
                 for (std::int32_t a = linked_.head(c1); a != LinkedCellList::end;
                      a = linked_.next(std::size_t(a))) {
+                    if (!scan.wants(std::uint32_t(a))) {
+                        continue;
+                    }
                     const std::int32_t first =
                         (own && half_) ? linked_.next(std::size_t(a)) : head2;
                     for (std::int32_t b = first; b != LinkedCellList::end;

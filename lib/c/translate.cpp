@@ -83,6 +83,13 @@ void to_options(const tricell_neighbor_options& options, std::size_t atoms, Neig
             out.species_cutoffs.push_back(SpeciesCutoff{table[k].a, table[k].b, table[k].cutoff});
         }
     }
+    out.query.reset();
+    if (options.query != nullptr) {
+        out.query.emplace(options.query, options.query + options.query_count);
+    } else if (options.query_count > 0) {
+        detail::fail<InvalidArgument>("options.query is NULL but options.query_count is ",
+                                      options.query_count);
+    }
 }
 
 tricell_neighbor_options to_c_options(const NeighborOptions& options) {
@@ -101,6 +108,8 @@ tricell_neighbor_options to_c_options(const NeighborOptions& options) {
     out.species = nullptr;
     out.species_cutoffs = nullptr;
     out.species_cutoff_count = 0;
+    out.query = nullptr;
+    out.query_count = 0;
     return out;
 }
 

@@ -42,14 +42,22 @@ Decomposition::Decomposition(MPI_Comm comm, std::array<int, 3> dims) {
     reset_bounds();
 }
 
-Decomposition::~Decomposition() {
-    if (comm_ != MPI_COMM_NULL) {
+namespace {
+// Frees a communicator the decomposition holds (not after MPI_Finalize).
+void release(MPI_Comm& comm) {
+    if (comm != MPI_COMM_NULL) {
         int finalized = 0;
         MPI_Finalized(&finalized);
         if (!finalized) {
-            MPI_Comm_free(&comm_);
+            MPI_Comm_free(&comm);
         }
+        comm = MPI_COMM_NULL;
     }
+}
+} // namespace
+
+Decomposition::~Decomposition() {
+    release(comm_);
 }
 
 Decomposition::Decomposition(Decomposition&& other) noexcept
@@ -58,7 +66,9 @@ Decomposition::Decomposition(Decomposition&& other) noexcept
 
 Decomposition& Decomposition::operator=(Decomposition&& other) noexcept {
     if (this != &other) {
-        this->~Decomposition();
+        // Not this->~Decomposition(): that would end the lifetime of bounds_ before the
+        // assignment below writes into it.
+        release(comm_);
         comm_ = std::exchange(other.comm_, MPI_COMM_NULL);
         rank_ = other.rank_;
         size_ = other.size_;

@@ -17,6 +17,8 @@ namespace {
 
 constexpr int tag_build = 7101;
 constexpr int tag_update = 7102;
+constexpr int tag_forward = 7103;
+constexpr int tag_reverse = 7104;
 
 // What travels per ghost.
 struct Record {
@@ -257,6 +259,7 @@ void Halo::exchange(const Decomposition& decomposition, const Box& box, bool fir
     requests.reserve(2 * neighbors_.size());
     const int tag = first ? tag_build : tag_update;
     stats_.bytes_sent = 0;
+    stats_.messages_sent = int(neighbors_.size());
     for (std::size_t n = 0; n < neighbors_.size(); ++n) {
         out[n].resize(sends_[n].size());
         for (std::size_t g = 0; g < sends_[n].size(); ++g) {
@@ -337,6 +340,101 @@ void Halo::exchange(const Decomposition& decomposition, const Box& box, bool fir
     stats_.owned = owned_;
     stats_.ghosts = ghosts;
     stats_.neighbor_ranks = int(neighbors_.size());
+}
+
+std::size_t Halo::first_slot(std::size_t n) const {
+    std::size_t slot = owned_ + self_sends_.size();
+    for (std::size_t m = 0; m < n; ++m) {
+        slot += received_[m];
+    }
+    return slot;
+}
+
+void Halo::check_values(const Decomposition& decomposition, const std::vector<double>& values,
+                        std::size_t width, const char* what) const {
+    detail::agreed(decomposition.comm(), [&] {
+        if (values.size() != width * ids_.size()) {
+            fail<InvalidArgument>(what, " needs ", width, " values per local atom (", ids_.size(),
+                                  " atoms: ", width * ids_.size(), " values), got ", values.size());
+        }
+    });
+}
+
+void Halo::forward(const Decomposition& decomposition, std::vector<double>& values,
+                   std::size_t width) const {
+    check_values(decomposition, values, width, "Halo::forward");
+    const MPI_Comm comm = decomposition.comm();
+    std::vector<std::vector<double>> out(neighbors_.size());
+    std::vector<MPI_Request> requests;
+    requests.reserve(2 * neighbors_.size());
+    comm_bytes_ = 0;
+    comm_messages_ = int(neighbors_.size());
+    for (std::size_t n = 0; n < neighbors_.size(); ++n) {
+        out[n].resize(width * sends_[n].size());
+        for (std::size_t g = 0; g < sends_[n].size(); ++g) {
+            std::copy_n(&values[width * sends_[n][g].atom], width, &out[n][width * g]);
+        }
+        comm_bytes_ += out[n].size() * sizeof(double);
+        requests.emplace_back();
+        detail::check_mpi(MPI_Isend(out[n].data(), int(out[n].size()), MPI_DOUBLE, neighbors_[n],
+                                    tag_forward, comm, &requests.back()),
+                          "MPI_Isend");
+    }
+    for (std::size_t g = 0; g < self_sends_.size(); ++g) {
+        std::copy_n(&values[width * self_sends_[g].atom], width, &values[width * (owned_ + g)]);
+    }
+    for (std::size_t n = 0; n < neighbors_.size(); ++n) {
+        requests.emplace_back();
+        detail::check_mpi(MPI_Irecv(values.data() + width * first_slot(n),
+                                    int(width * received_[n]), MPI_DOUBLE, neighbors_[n],
+                                    tag_forward, comm, &requests.back()),
+                          "MPI_Irecv");
+    }
+    detail::check_mpi(MPI_Waitall(int(requests.size()), requests.data(), MPI_STATUSES_IGNORE),
+                      "MPI_Waitall");
+}
+
+void Halo::reverse_sum(const Decomposition& decomposition, std::vector<double>& values,
+                       std::size_t width) const {
+    check_values(decomposition, values, width, "Halo::reverse_sum");
+    const MPI_Comm comm = decomposition.comm();
+    std::vector<std::vector<double>> in(neighbors_.size());
+    std::vector<MPI_Request> requests;
+    requests.reserve(2 * neighbors_.size());
+    comm_bytes_ = 0;
+    comm_messages_ = int(neighbors_.size());
+    // Each neighbour gets back the rows of the ghosts it sent, in the order it sent them.
+    for (std::size_t n = 0; n < neighbors_.size(); ++n) {
+        in[n].resize(width * sends_[n].size());
+        requests.emplace_back();
+        detail::check_mpi(MPI_Irecv(in[n].data(), int(in[n].size()), MPI_DOUBLE, neighbors_[n],
+                                    tag_reverse, comm, &requests.back()),
+                          "MPI_Irecv");
+    }
+    for (std::size_t n = 0; n < neighbors_.size(); ++n) {
+        const std::size_t count = width * received_[n];
+        comm_bytes_ += count * sizeof(double);
+        requests.emplace_back();
+        detail::check_mpi(MPI_Isend(values.data() + width * first_slot(n), int(count), MPI_DOUBLE,
+                                    neighbors_[n], tag_reverse, comm, &requests.back()),
+                          "MPI_Isend");
+    }
+    detail::check_mpi(MPI_Waitall(int(requests.size()), requests.data(), MPI_STATUSES_IGNORE),
+                      "MPI_Waitall");
+    // Sums in a fixed order: images of this rank's own atoms, then each neighbour's rows.
+    auto add = [&](std::size_t atom, const double* row) {
+        for (std::size_t c = 0; c < width; ++c) {
+            values[width * atom + c] += row[c];
+        }
+    };
+    for (std::size_t g = 0; g < self_sends_.size(); ++g) {
+        add(self_sends_[g].atom, &values[width * (owned_ + g)]);
+    }
+    for (std::size_t n = 0; n < neighbors_.size(); ++n) {
+        for (std::size_t g = 0; g < sends_[n].size(); ++g) {
+            add(sends_[n][g].atom, &in[n][width * g]);
+        }
+    }
 }
 
 } // namespace tricell::mpi

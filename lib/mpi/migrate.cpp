@@ -1,4 +1,5 @@
 // migrate(): every atom to the owner of its wrapped fractional position (see atoms.hpp).
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -139,6 +140,107 @@ void migrate(const Decomposition& decomposition, const Box& box, LocalAtoms& ato
                         atoms.payload_width * sizeof(double));
         }
     }
+}
+
+namespace {
+
+constexpr int tag_migrate = 7201;
+
+// One atom as a record of doubles: the id's bits, the position, the payload.
+void pack(const LocalAtoms& atoms, std::size_t a, std::vector<double>& out) {
+    const std::size_t at = out.size();
+    out.resize(at + 4 + atoms.payload_width);
+    std::memcpy(&out[at], &atoms.ids[a], sizeof(double));
+    std::memcpy(&out[at + 1], &atoms.positions[3 * a], 3 * sizeof(double));
+    if (atoms.payload_width > 0) {
+        std::memcpy(&out[at + 4], &atoms.payload[atoms.payload_width * a],
+                    atoms.payload_width * sizeof(double));
+    }
+}
+
+} // namespace
+
+bool migrate(const Decomposition& decomposition, const Box& box, LocalAtoms& atoms,
+             const std::vector<int>& neighbors) {
+    const MPI_Comm comm = decomposition.comm();
+    const int me = decomposition.rank();
+    std::vector<int> own;
+    int near = 1;
+    try {
+        atoms.validate();
+        own = owners(decomposition, box, atoms);
+        const std::size_t record = 4 + atoms.payload_width;
+        near = int(record * atoms.size() <= std::size_t(std::numeric_limits<int>::max()));
+        for (int r : own) {
+            near &= int(r == me || std::binary_search(neighbors.begin(), neighbors.end(), r));
+        }
+    } catch (const std::exception&) {
+        near = 0; // migrate() reports it on every rank
+    }
+    // The vote also covers the payload width: a width that differs goes to migrate() too.
+    long vote[3] = {near, long(atoms.payload_width), -long(atoms.payload_width)};
+    detail::check_mpi(MPI_Allreduce(MPI_IN_PLACE, vote, 3, MPI_LONG, MPI_MIN, comm),
+                      "MPI_Allreduce");
+    if (vote[0] == 0 || vote[1] != -vote[2]) {
+        migrate(decomposition, box, atoms);
+        return false;
+    }
+    // The sources in rank order (this rank among them), as MPI_Alltoallv would deliver them.
+    std::vector<int> sources = neighbors;
+    sources.insert(std::upper_bound(sources.begin(), sources.end(), me), me);
+    std::vector<std::vector<double>> out(sources.size()), in(sources.size());
+    for (std::size_t a = 0; a < atoms.size(); ++a) {
+        const auto slot =
+            std::size_t(std::lower_bound(sources.begin(), sources.end(), own[a]) - sources.begin());
+        pack(atoms, a, out[slot]);
+    }
+    std::vector<MPI_Request> requests;
+    requests.reserve(sources.size());
+    for (std::size_t n = 0; n < sources.size(); ++n) {
+        if (sources[n] == me) {
+            in[n].swap(out[n]);
+            continue;
+        }
+        requests.emplace_back();
+        detail::check_mpi(MPI_Isend(out[n].data(), int(out[n].size()), MPI_DOUBLE, sources[n],
+                                    tag_migrate, comm, &requests.back()),
+                          "MPI_Isend");
+    }
+    for (std::size_t n = 0; n < sources.size(); ++n) {
+        if (sources[n] == me) {
+            continue;
+        }
+        MPI_Status status;
+        detail::check_mpi(MPI_Probe(sources[n], tag_migrate, comm, &status), "MPI_Probe");
+        int count = 0;
+        MPI_Get_count(&status, MPI_DOUBLE, &count);
+        in[n].resize(std::size_t(count));
+        detail::check_mpi(MPI_Recv(in[n].data(), count, MPI_DOUBLE, sources[n], tag_migrate, comm,
+                                   MPI_STATUS_IGNORE),
+                          "MPI_Recv");
+    }
+    detail::check_mpi(MPI_Waitall(int(requests.size()), requests.data(), MPI_STATUSES_IGNORE),
+                      "MPI_Waitall");
+    const std::size_t record = 4 + atoms.payload_width;
+    std::size_t n = 0;
+    for (const auto& v : in) {
+        n += v.size() / record;
+    }
+    atoms.ids.resize(n);
+    atoms.positions.resize(3 * n);
+    atoms.payload.resize(atoms.payload_width * n);
+    std::size_t a = 0;
+    for (const auto& v : in) {
+        for (std::size_t k = 0; k < v.size(); k += record, ++a) {
+            std::memcpy(&atoms.ids[a], &v[k], sizeof(double));
+            std::memcpy(&atoms.positions[3 * a], &v[k + 1], 3 * sizeof(double));
+            if (atoms.payload_width > 0) {
+                std::memcpy(&atoms.payload[atoms.payload_width * a], &v[k + 4],
+                            atoms.payload_width * sizeof(double));
+            }
+        }
+    }
+    return true;
 }
 
 } // namespace tricell::mpi

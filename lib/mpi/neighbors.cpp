@@ -47,7 +47,7 @@ void DistributedSearch::build(const Decomposition& decomposition, const Box& box
     // The ghosts are the periodic images: the local search runs with every axis open, with the
     // local atoms' radii and species.
     const Box open = Box::from_columns(box.matrix(), Periodicity::none());
-    NeighborOptions local = detail::local_options(options_);
+    NeighborOptions local = detail::local_options(options_, halo_.owned_count());
     local.radii = halo_.radii();
     local.species = halo_.species();
     if (by_radii && halo_.size() == 0) {

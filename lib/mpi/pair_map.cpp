@@ -8,8 +8,11 @@ namespace tricell::mpi {
 
 namespace detail {
 
-NeighborOptions local_options(const NeighborOptions& caller) {
+NeighborOptions local_options(const NeighborOptions& caller, std::size_t owned) {
     NeighborOptions local = caller;
+    std::vector<std::uint32_t> query(owned);
+    std::iota(query.begin(), query.end(), 0u);
+    local.query = std::move(query);
     local.half = true;
     local.sorted = false;
     local.grouped = false;
@@ -39,11 +42,13 @@ void sort_pairs(DistributedPairs& p) {
     };
     std::sort(order.begin(), order.end(),
               [&](std::size_t a, std::size_t b) { return key(a) < key(b); });
-    std::vector<std::uint32_t> owned(n);
+    std::vector<std::uint32_t> owned(n), local_j(n);
     for (std::size_t k = 0; k < n; ++k) {
         owned[k] = p.owned[order[k]];
+        local_j[k] = p.local_j[order[k]];
     }
     p.owned.swap(owned);
+    p.local_j.swap(local_j);
     p.permute(order);
 }
 
@@ -63,6 +68,7 @@ void map_pairs(const NeighborList& local, const Halo& halo, bool half, bool sort
     // Sized for the most pairs there can be (both orientations of every local pair), then cut.
     const std::size_t most = 2 * local.size();
     out.owned.resize(most);
+    out.local_j.resize(most);
     out.i.resize(most);
     out.j.resize(most);
     out.shifts.resize(keep_shifts ? 3 * most : 0);
@@ -78,6 +84,7 @@ void map_pairs(const NeighborList& local, const Halo& halo, bool half, bool sort
             return;
         }
         out.owned[n] = std::uint32_t(a);
+        out.local_j[n] = std::uint32_t(b);
         out.i[n] = ids[a];
         out.j[n] = ids[b];
         if (keep_shifts) {
@@ -104,6 +111,7 @@ void map_pairs(const NeighborList& local, const Halo& halo, bool half, bool sort
         }
     }
     out.owned.resize(n);
+    out.local_j.resize(n);
     out.i.resize(n);
     out.j.resize(n);
     out.shifts.resize(keep_shifts ? 3 * n : 0);

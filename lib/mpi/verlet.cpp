@@ -1,6 +1,7 @@
 #include "tricell/mpi/verlet.hpp"
 
 #include <exception>
+#include <numeric>
 #include <string>
 
 #include "collective.hpp"
@@ -49,16 +50,38 @@ bool DistributedVerletList::update(const Decomposition& decomposition, const Box
         detail::agreed(comm, [&] { local_.update(open, halo_.points()); });
     } else {
         built_ = false;
-        migrate(decomposition, box, atoms);
+        // Among the last halo's neighbour ranks when every atom's owner is one of them (an atom
+        // moves less than the halo reach in a Verlet interval), else MPI_Alltoall.
+        if (!halo_built_ || !migrate(decomposition, box, atoms, halo_.neighbor_ranks())) {
+            if (!halo_built_) {
+                migrate(decomposition, box, atoms);
+            }
+            ++alltoall_migrations_;
+        }
         halo_.build(decomposition, box, atoms.ids, atoms.points(), local_.list_radius());
+        // Pairs of the owned atoms only (the first of the local atoms): no ghost-ghost pair.
+        std::vector<std::uint32_t> owned(halo_.owned_count());
+        std::iota(owned.begin(), owned.end(), 0u);
+        local_.set_query(std::move(owned));
         detail::agreed(comm, [&] { local_.rebuild(open, halo_.points()); });
         built_ = true;
+        halo_built_ = true;
         built_periodicity_ = box.periodicity();
         ++rebuild_count_;
     }
     detail::map_pairs(local_.pairs(), halo_, options_.neighbors.half, false,
                       options_.neighbors.quantities, pairs_);
     return !keep;
+}
+
+void DistributedVerletList::forward(const Decomposition& decomposition, const Box& box,
+                                    const LocalAtoms& atoms) {
+    halo_.update(decomposition, box, atoms.points());
+}
+
+void DistributedVerletList::reverse_sum(const Decomposition& decomposition,
+                                        std::vector<double>& values, std::size_t width) const {
+    halo_.reverse_sum(decomposition, values, width);
 }
 
 } // namespace tricell::mpi

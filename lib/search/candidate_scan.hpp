@@ -9,6 +9,12 @@
 // each came from (x = wrapped + H image) and the caller's index of each. A pair (a, b) found
 // through the cell shift s has D = x_b + H s - x_a in the search frame and, for the caller,
 // S = s + image_a - image_b.
+//
+// A subset search (NeighborOptions::query) flags the query atoms; the backend is binned for a
+// full list, and the scanner takes as first atom a only query atoms, gathered from each range
+// into the kernel's groups, so the tests are those of the query's own pairs. A half subset list
+// keeps a pair whose other end b is also a query atom only in its canonical orientation (the
+// other orientation is found from b), and every pair with b outside the query, oriented from a.
 #pragma once
 
 #include <algorithm>
@@ -21,6 +27,7 @@
 #include <Eigen/Core>
 
 #include "search/distance_kernel.hpp"
+#include "search/half_orientation.hpp"
 #include "search/pair_sink.hpp"
 #include "tricell/neighbor_list.hpp"
 
@@ -74,10 +81,16 @@ class CandidateScanner {
   public:
     CandidateScanner(const AtomTable& atoms, const Eigen::Matrix3d& h, double cutoff_sq,
                      const CutoffRule& rule, bool half, const Eigen::Matrix3i& to_caller,
-                     bool reduced_frame, PairSink& sink)
+                     bool reduced_frame, PairSink& sink, const std::uint8_t* query = nullptr,
+                     bool subset_half = false)
         : x_(atoms.x.data()), y_(atoms.y.data()), z_(atoms.z.data()), image_(atoms.image.data()),
           index_(atoms.index.data()), h_(h), cutoff_sq_(cutoff_sq), rule_(rule), half_(half),
-          to_caller_(to_caller), reduced_frame_(reduced_frame), sink_(sink) {}
+          to_caller_(to_caller), reduced_frame_(reduced_frame), sink_(sink), query_(query),
+          subset_half_(subset_half) {}
+
+    /// Whether atom a can be the first atom of a pair (false only outside a query subset);
+    /// backends that name single pairs skip the others early.
+    bool wants(std::uint32_t a) const { return query_ == nullptr || query_[a] != 0; }
 
     ImageShift shift(int sa, int sb, int sc) const {
         const Eigen::Vector3d v = h_.col(0) * sa + h_.col(1) * sb + h_.col(2) * sc;
@@ -89,19 +102,30 @@ class CandidateScanner {
     /// list takes only b > a (then b0 == a0 is required, so each unordered pair is seen once).
     void ranges(std::uint32_t a0, std::uint32_t a1, std::uint32_t b0, std::uint32_t b1,
                 const ImageShift& s, bool own) {
+        if (query_ != nullptr) {
+            subset_ranges(a0, a1, b0, b1, s, own);
+            return;
+        }
         tests_ += std::uint64_t(a1 - a0) * std::uint64_t(b1 - b0);
         // Up to kernel_group atoms a in one kernel call. In the own range all of them are
         // tested against the same range and the pairs a full list skips (b == a) or a half list
         // leaves to the other atom (b < a) are dropped after the test: that is a few tests more,
         // against a kernel call per atom.
+        std::uint32_t group[kernel_group];
         for (std::uint32_t a = a0; a < a1; a += kernel_group) {
             const std::uint32_t last = std::min(a + kernel_group, a1);
-            scan(a, last, own && half_ ? a + 1 : b0, b1, s, own);
+            for (std::uint32_t g = 0; g < last - a; ++g) {
+                group[g] = a + g;
+            }
+            scan(group, last - a, own && half_ ? a + 1 : b0, b1, s, own);
         }
     }
 
     /// One candidate pair (a, b) through `s` (backends without contiguous ranges).
     void pair(std::uint32_t a, std::uint32_t b, const ImageShift& s) {
+        if (!wants(a)) {
+            return;
+        }
         ++tests_;
         const double dx = x_[b] - (x_[a] - s.vx);
         const double dy = y_[b] - (y_[a] - s.vy);
@@ -116,6 +140,9 @@ class CandidateScanner {
     /// The pair (a, b) through each of shifts[0, count) (the direct backend: few atoms, many
     /// images). The same test, term for term, as pair() for each shift.
     void images(std::uint32_t a, std::uint32_t b, const ImageShift* shifts, std::size_t count) {
+        if (!wants(a)) {
+            return;
+        }
         tests_ += count;
         const double ax = x_[a], ay = y_[a], az = z_[a];
         const double bx = x_[b], by = y_[b], bz = z_[b];
@@ -144,22 +171,46 @@ class CandidateScanner {
     // pair (the image arithmetic was ~30 of the ~120 instructions per stored pair on diamond
     // Si): the position relative to s and, for the caller, the index and s + image.
     struct Side {
+        std::uint32_t a[kernel_group]; ///< the atoms, in the backend's order
         double x[kernel_group], y[kernel_group], z[kernel_group];
         std::uint32_t i[kernel_group];
         int sa[kernel_group], sb[kernel_group], sc[kernel_group];
     };
 
-    // Atoms a in [a_first, a_last) (at most kernel_group) against b in [from, to) through s,
-    // one kernel block at a time; with `own`, only the b that ranges() takes for each a.
-    void scan(std::uint32_t a_first, std::uint32_t a_last, std::uint32_t from, std::uint32_t to,
+    // The query atoms of [a0, a1) as first atoms, in groups of up to kernel_group, against
+    // [b0, b1) through s (a full scan: the scanner's half_ is off in a subset search).
+    void subset_ranges(std::uint32_t a0, std::uint32_t a1, std::uint32_t b0, std::uint32_t b1,
+                       const ImageShift& s, bool own) {
+        std::uint32_t group[kernel_group];
+        std::uint32_t count = 0;
+        for (std::uint32_t a = a0; a < a1; ++a) {
+            if (query_[a] == 0) {
+                continue;
+            }
+            group[count++] = a;
+            if (count == kernel_group) {
+                tests_ += std::uint64_t(count) * std::uint64_t(b1 - b0);
+                scan(group, count, b0, b1, s, own);
+                count = 0;
+            }
+        }
+        if (count > 0) {
+            tests_ += std::uint64_t(count) * std::uint64_t(b1 - b0);
+            scan(group, count, b0, b1, s, own);
+        }
+    }
+
+    // Atoms group[0, count) (at most kernel_group, ascending) against b in [from, to) through
+    // s, one kernel block at a time; with `own`, only the b that ranges() takes for each a.
+    void scan(const std::uint32_t* atoms, std::uint32_t group, std::uint32_t from, std::uint32_t to,
               const ImageShift& s, bool own) {
         if (from >= to) {
             return;
         }
         Side side;
-        const std::uint32_t group = a_last - a_first;
         for (std::uint32_t g = 0; g < group; ++g) {
-            const std::uint32_t a = a_first + g;
+            const std::uint32_t a = atoms[g];
+            side.a[g] = a;
             side.x[g] = x_[a] - s.vx;
             side.y[g] = y_[a] - s.vy;
             side.z[g] = z_[a] - s.vz;
@@ -176,28 +227,31 @@ class CandidateScanner {
                 within_cutoff_group(x_ + start, y_ + start, z_ + start, count, side.x, side.y,
                                     side.z, group, cutoff_sq_, hits, hit_d_sq);
             if (own) {
-                found = drop_others(a_first, start, hits, hit_d_sq, found);
+                found = drop_others(side, start, hits, hit_d_sq, found);
+            }
+            if (subset_half_) {
+                found = drop_mirrored(side, start, hits, hit_d_sq, found);
             }
             if (found == 0) {
                 continue;
             }
             if (!rule_.uniform()) {
-                keep_some(side, a_first, start, hits, hit_d_sq, found, s);
+                keep_some(side, start, hits, hit_d_sq, found, s);
             } else if (!half_) {
                 keep_all(side, start, hits, hit_d_sq, found);
             } else {
-                keep_oriented(side, a_first, start, hits, hit_d_sq, found, s);
+                keep_oriented(side, start, hits, hit_d_sq, found, s);
             }
         }
     }
 
     // Drops the own range's hits (a, b) that ranges() does not take: b == a, and b < a in a
     // half list. Returns how many remain (in order).
-    std::uint32_t drop_others(std::uint32_t a_first, std::uint32_t start, std::uint32_t* hits,
+    std::uint32_t drop_others(const Side& side, std::uint32_t start, std::uint32_t* hits,
                               double* d_sq, std::uint32_t found) const {
         std::uint32_t kept = 0;
         for (std::uint32_t h = 0; h < found; ++h) {
-            const std::uint32_t a = a_first + hits[h] / kernel_block;
+            const std::uint32_t a = side.a[hits[h] / kernel_block];
             const std::uint32_t b = start + hits[h] % kernel_block;
             hits[kept] = hits[h];
             d_sq[kept] = d_sq[h];
@@ -206,13 +260,31 @@ class CandidateScanner {
         return kept;
     }
 
+    // A half subset list drops the hits (a, b) with b a query atom too that are not in the
+    // canonical orientation: that pair is kept when found from b. Returns how many remain.
+    std::uint32_t drop_mirrored(const Side& side, std::uint32_t start, std::uint32_t* hits,
+                                double* d_sq, std::uint32_t found) const {
+        std::uint32_t kept = 0;
+        for (std::uint32_t h = 0; h < found; ++h) {
+            const std::uint32_t g = hits[h] / kernel_block;
+            const std::uint32_t b = start + hits[h] % kernel_block;
+            hits[kept] = hits[h];
+            d_sq[kept] = d_sq[h];
+            const bool mirrored =
+                query_[b] != 0 &&
+                flip(side.i[g], index_[b], side.sa[g] - image_[3 * b],
+                     side.sb[g] - image_[3 * b + 1], side.sc[g] - image_[3 * b + 2]);
+            kept += mirrored ? 0u : 1u;
+        }
+        return kept;
+    }
+
     // The hits of a block of which some may not count (a half list orients each pair and
     // drops the rare one whose test fails in the other orientation; a variable cutoff drops
     // more): pair by pair, but with the block's places claimed once, D computed only when
     // stored and the square roots taken together at the end.
-    void keep_some(const Side& side, std::uint32_t a_first, std::uint32_t start,
-                   const std::uint32_t* hits, const double* d_sq, std::uint32_t found,
-                   const ImageShift& s) {
+    void keep_some(const Side& side, std::uint32_t start, const std::uint32_t* hits,
+                   const double* d_sq, std::uint32_t found, const ImageShift& s) {
         const PairSink::Slots out = sink_.claim(found);
         double kept_d_sq[kernel_group * kernel_block];
         std::uint32_t kept = 0;
@@ -225,7 +297,7 @@ class CandidateScanner {
                 p.dy = y_[b] - side.y[g];
                 p.dz = z_[b] - side.z[g];
             }
-            if (!counts(a_first + g, b, s, p)) {
+            if (!counts(side.a[g], b, s, p)) {
                 continue;
             }
             PairSink::put(out, kept, p.i, p.j, p.sa, p.sb, p.sc, p.dx, p.dy, p.dz);
@@ -241,12 +313,11 @@ class CandidateScanner {
     // around; only those have D and d^2 computed again, in their own orientation (see counts()).
     // In the rare block where that second test fails, keep_some() redoes the block (it reads
     // d^2 only of the pairs not turned around, which this leaves as they were).
-    void keep_oriented(const Side& side, std::uint32_t a_first, std::uint32_t start,
-                       const std::uint32_t* hits, double* d_sq, std::uint32_t found,
-                       const ImageShift& s) {
+    void keep_oriented(const Side& side, std::uint32_t start, const std::uint32_t* hits,
+                       double* d_sq, std::uint32_t found, const ImageShift& s) {
         const PairSink::Slots out = sink_.claim(found);
         if (out.vectors != nullptr) {
-            keep_some(side, a_first, start, hits, d_sq, found, s);
+            keep_some(side, start, hits, d_sq, found, s);
             return;
         }
         std::uint32_t turned[kernel_group * kernel_block];
@@ -273,14 +344,14 @@ class CandidateScanner {
         bool all_count = true;
         for (std::uint32_t t = 0; t < turns; ++t) {
             const std::uint32_t h = turned[t];
-            const std::uint32_t a = a_first + hits[h] / kernel_block;
+            const std::uint32_t a = side.a[hits[h] / kernel_block];
             const std::uint32_t b = start + hits[h] % kernel_block;
             double dx, dy, dz;
             d_sq[h] = turned_around(a, b, s, dx, dy, dz);
             all_count = all_count && d_sq[h] < cutoff_sq_;
         }
         if (!all_count) {
-            keep_some(side, a_first, start, hits, d_sq, found, s);
+            keep_some(side, start, hits, d_sq, found, s);
             return;
         }
         PairSink::put_distances(out, d_sq, found);
@@ -373,6 +444,9 @@ class CandidateScanner {
     void hit(std::uint32_t a, std::uint32_t b, std::uint32_t i, int sa_a, int sb_a, int sc_a,
              const ImageShift& s, double dx, double dy, double dz, double d_sq) {
         Hit p = make_hit(b, i, sa_a, sb_a, sc_a, dx, dy, dz, d_sq);
+        if (subset_half_ && query_[b] != 0 && flip(p.i, p.j, p.sa, p.sb, p.sc)) {
+            return; // kept when found from b
+        }
         if (counts(a, b, s, p)) {
             sink_.add(p.i, p.j, p.sa, p.sb, p.sc, p.dx, p.dy, p.dz, p.d_sq);
         }
@@ -389,8 +463,7 @@ class CandidateScanner {
         if (reduced_frame_) {
             caller = to_caller_ * caller;
         }
-        return caller[0] < 0 ||
-               (caller[0] == 0 && (caller[1] < 0 || (caller[1] == 0 && caller[2] < 0)));
+        return lexicographically_positive(-caller[0], -caller[1], -caller[2]);
     }
 
     const double* x_;
@@ -405,6 +478,8 @@ class CandidateScanner {
     Eigen::Matrix3i to_caller_;
     bool reduced_frame_;
     PairSink& sink_;
+    const std::uint8_t* query_; // null unless a subset search (see above)
+    bool subset_half_;
     std::uint64_t tests_ = 0;
 };
 

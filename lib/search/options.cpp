@@ -97,4 +97,28 @@ void detail::check_positions(PointsView positions, std::size_t threads) {
     });
 }
 
+std::vector<std::uint8_t> detail::query_flags(const NeighborOptions& options, std::size_t n) {
+    std::vector<std::uint8_t> flags;
+    if (!options.query) {
+        return flags;
+    }
+    const std::vector<std::uint32_t>& query = *options.query;
+    flags.assign(n, 0);
+    for (std::size_t k = 0; k < query.size(); ++k) {
+        const std::uint32_t q = query[k];
+        if (q >= n) {
+            fail<InvalidArgument>("query[", k, "] is ", q, ", not the index of one of the ", n,
+                                  " positions");
+        }
+        if (flags[q] != 0) {
+            fail<InvalidArgument>("query[", k, "] is ", q, ", which the query already holds");
+        }
+        flags[q] = 1;
+    }
+    if (query.size() == n) {
+        flags.clear(); // every point: the ordinary search
+    }
+    return flags;
+}
+
 } // namespace tricell

@@ -69,16 +69,25 @@ void NeighborSearch::build(const Box& caller_box, PointsView positions,
     // grid refuses and the other backends accept.
     s.search_radius = std::min(cutoff * (1 + search_margin), std::numeric_limits<double>::max());
 
+    // A subset search bins the atoms for a full list and scans from the query atoms only.
+    std::vector<std::uint8_t> query = detail::query_flags(options, n);
+    const bool subset = !query.empty();
+    const std::size_t query_size = subset ? options.query->size() : n;
+    NeighborOptions binning = options;
+    binning.half = options.half && !subset;
+
     detail::WrappedPositions wrapped;
     detail::wrap_positions(box, positions, threads, wrapped);
-    if (!(cutoff > 0) || n == 0) {
+    if (!(cutoff > 0) || n == 0 || query_size == 0) {
         s.atoms = detail::AtomTable();
+        s.query.clear();
         state_ = std::move(state); // no pair can count: an empty search
         return;
     }
     s.cutoff_sq = detail::strict_threshold_sq(cutoff);
     s.estimated_pairs =
-        detail::estimated_system_pairs(box, n, wrapped.lower, wrapped.upper, cutoff, options.half);
+        detail::estimated_system_pairs(box, n, wrapped.lower, wrapped.upper, cutoff, binning.half) *
+        (double(query_size) / double(n));
     if (options.max_pairs != 0 && s.estimated_pairs > double(options.max_pairs)) {
         throw PairLimitError(detail::cat("cutoff ", cutoff, " would give about ", s.estimated_pairs,
                                          " pairs for ", n, " atoms (estimated from the density)"),
@@ -88,15 +97,19 @@ void NeighborSearch::build(const Box& caller_box, PointsView positions,
     const SearchBackend kind =
         options.backend == SearchBackend::automatic
             ? detail::automatic_backend(box, wrapped.fractional, wrapped.lower, wrapped.upper,
-                                        s.search_radius, options)
+                                        s.search_radius, binning)
             : options.backend;
     s.backend = &s.pool.get(kind);
     std::vector<std::uint32_t> order;
     s.backend->bin(detail::BinningInput{box, wrapped.fractional, wrapped.lower, wrapped.upper,
-                                        s.search_radius, options, threads,
+                                        s.search_radius, binning, threads,
                                         detail::cell_cap(options, n)},
                    order);
     detail::fill_atom_table(s.h, positions, wrapped.image, std::move(order), threads, s.atoms);
+    s.query.resize(subset ? n : 0);
+    for (std::size_t k = 0; k < s.query.size(); ++k) {
+        s.query[k] = query[s.atoms.index[k]];
+    }
     state_ = std::move(state);
 }
 
@@ -127,11 +140,14 @@ void NeighborSearch::compute(NeighborList& out) const {
         s.backend->occupancy(occupancy);
         const double sphere = 4.0 / 3.0 * pi * std::pow(s.rule.max_cutoff(), 3);
         const double box_volume = std::abs(s.h.determinant());
+        // A subset search: the query's share of the pairs, for both halves of a full scan.
+        const double share =
+            s.query.empty() ? 1.0 : double(s.options.query->size()) / double(s.atom_count);
         std::vector<double> expected(units);
         double total = 0;
         for (std::size_t u = 0; u < units; ++u) {
             expected[u] =
-                (s.options.half ? 0.5 : 1.0) *
+                (s.options.half && s.query.empty() ? 0.5 : share) *
                 expected_pairs(occupancy.atoms[u], occupancy.volume[u] * box_volume, sphere);
             total += expected[u];
         }

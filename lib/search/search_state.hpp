@@ -2,6 +2,8 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -25,14 +27,19 @@ struct SearchState {
     double estimated_pairs = 0;
     CutoffRule rule;
     AtomTable atoms;
+    // A subset search (NeighborOptions::query): 1 per query atom, in the backend's order (the
+    // AtomTable's); empty for the ordinary search. The backend is then binned for a full list.
+    std::vector<std::uint8_t> query;
     // The backend of the last build, null when no pair can count (all radii zero, ...).
     Backend* backend = nullptr;
     BackendPool pool;
 
     /// A scanner of this search's atoms that hands its pairs to `sink`.
     CandidateScanner scanner(PairSink& sink) const {
-        return CandidateScanner(atoms, h, cutoff_sq, rule, options.half, to_caller, reduced_frame,
-                                sink);
+        const bool subset = !query.empty();
+        return CandidateScanner(atoms, h, cutoff_sq, rule, options.half && !subset, to_caller,
+                                reduced_frame, sink, subset ? query.data() : nullptr,
+                                subset && options.half);
     }
 };
 

@@ -222,6 +222,72 @@ std::vector<std::int32_t> per_atom_species(const py::handle& values, std::size_t
     return out;
 }
 
+namespace {
+
+// "(rows,)" or "(rows, 3)" (rows < 0: "N"), for messages.
+std::string wanted_shape(py::ssize_t rows, int width) {
+    const std::string count = rows < 0 ? "N" : std::to_string(rows);
+    return width == 1 ? "(" + count + ",)" : "(" + count + ", 3)";
+}
+
+// Whether `a` has shape (rows,) or (rows, 3), rows < 0 meaning any; an empty array of rank 1
+// also passes as width 3 (an empty list).
+bool has_rows(const py::array& a, py::ssize_t rows, int width) {
+    if (width == 3 && a.ndim() == 1 && a.shape(0) == 0 && rows <= 0) {
+        return true;
+    }
+    const bool shape = width == 1 ? a.ndim() == 1 : (a.ndim() == 2 && a.shape(1) == 3);
+    return shape && (rows < 0 || a.shape(0) == rows);
+}
+
+void require_rows(const py::array& a, const char* name, py::ssize_t rows, int width,
+                  const char* rows_name) {
+    if (!has_rows(a, rows, width)) {
+        std::string text = std::string(name) + " must have shape " + wanted_shape(rows, width);
+        if (rows >= 0 && rows_name != nullptr) {
+            text += std::string(", one entry per entry of ") + rows_name;
+        }
+        value_error(text + " (got shape " + shape_of(a) + ")");
+    }
+}
+
+} // namespace
+
+std::vector<std::int64_t> index_array(const py::handle& values, const char* name, py::ssize_t rows,
+                                      int width, const char* rows_name) {
+    const py::array a = numpy_array(values, name);
+    const char kind = a.dtype().kind();
+    if (kind != 'i' && kind != 'u') {
+        throw py::type_error(std::string(name) + " must be integers, not " +
+                             (kind == 'f' ? "float" : kind_name(kind)) + " (got " + got(a) + ")");
+    }
+    require_rows(a, name, rows, width, rows_name);
+    const auto n = static_cast<std::size_t>(a.size());
+    std::vector<std::int64_t> out(n);
+    if (kind == 'u') {
+        const py::array_t<std::uint64_t, py::array::c_style | py::array::forcecast> wide(a);
+        for (std::size_t k = 0; k < n; ++k) {
+            const std::uint64_t v = wide.data()[k];
+            if (v > static_cast<std::uint64_t>(INT64_MAX)) {
+                value_error(std::string(name) + " holds " + std::to_string(v) +
+                            ", beyond a 64-bit signed integer (dtype " + dtype_of(a) + ")");
+            }
+            out[k] = static_cast<std::int64_t>(v);
+        }
+    } else if (n > 0) {
+        const py::array_t<std::int64_t, py::array::c_style | py::array::forcecast> wide(a);
+        std::memcpy(out.data(), wide.data(), n * sizeof(std::int64_t));
+    }
+    return out;
+}
+
+DoubleArray pair_value_array(const py::handle& values, const char* name, py::ssize_t rows,
+                             int width, const char* rows_name) {
+    DoubleArray a = real_array(values, name);
+    require_rows(a, name, rows, width, rows_name);
+    return a;
+}
+
 Periodicity periodicity(const py::handle& periodic, const char* name) {
     const py::array a = numpy_array(periodic, name);
     const char kind = a.dtype().kind();

@@ -9,6 +9,9 @@
 //     C-contiguous input is used as it is), so every accepted layout gives the same result;
 //     points are N x 3 (an empty list or shape (0, 3) is no atoms), a box 3 x 3;
 //   - species take integers ('i', 'u'), or floats whose values are whole numbers;
+//   - pair indices and shifts (the i, j, S of a list to verify) take integers ('i', 'u') only,
+//     any width, converted to int64 (a uint64 above 2^63 - 1 is a ValueError); an index out of
+//     range is a property of the list, reported by the verification, not refused here;
 //   - periodic takes bools, or the integers 0 and 1; one value (every axis) or three;
 //   - any other kind is a TypeError: bool ('b') for numbers, complex ('c', never cast to its
 //     real part), datetime and timedelta ('M', 'm'), object ('O', also a list mixing numbers
@@ -68,6 +71,15 @@ std::vector<std::int32_t> species_array(const py::handle& values, const char* na
 std::vector<std::int32_t> per_atom_species(const py::handle& values, std::size_t atoms,
                                            const char* name = "species");
 
+/// `rows` integers (width 1: shape (rows,)), or rows x 3 ones (width 3) when rows is -1 any
+/// count, as C-contiguous int64; `rows_name` names the array whose length this must match.
+std::vector<std::int64_t> index_array(const py::handle& values, const char* name, py::ssize_t rows,
+                                      int width, const char* rows_name);
+
+/// Real numbers of shape (rows,) (width 1) or (rows, 3) (width 3), as C-contiguous float64.
+DoubleArray pair_value_array(const py::handle& values, const char* name, py::ssize_t rows,
+                             int width, const char* rows_name);
+
 /// Periodicity from one bool (every axis) or three.
 Periodicity periodicity(const py::handle& periodic, const char* name = "periodic");
 
@@ -79,6 +91,11 @@ Box box_from_rows(const py::handle& box, const py::handle& periodic, const char*
 /// The checks above for Python code (tricell._tricell._as_array): `rule` is "points", "box",
 /// "real", "species" or "periodic"; returns the converted array (float64, int32 or 3 bools).
 py::array checked_array(const py::handle& value, const std::string& name, const std::string& rule);
+
+/// The cutoff argument of NeighborList and verify into `options`: a float (one cutoff), a dict
+/// {(species a, species b): cutoff} (a per-species-pair table) or None (per-atom radii, given
+/// elsewhere). ValueError for anything else.
+void set_cutoff(const py::object& cutoff, NeighborOptions& options);
 
 /// Which NeighborList columns a quantities string needs; throws ValueError for other letters.
 Quantities parse_quantities(const std::string& letters);

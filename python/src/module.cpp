@@ -21,6 +21,7 @@ void bind_neighbors(py::module_& m);
 void bind_displacement(py::module_& m);
 void bind_read(py::module_& m);
 void bind_analysis(py::module_& m);
+void bind_verify(py::module_& m);
 
 } // namespace tricell::python
 
@@ -64,4 +65,5 @@ PYBIND11_MODULE(_tricell, m) {
     tricell::python::bind_displacement(m);
     tricell::python::bind_read(m);
     tricell::python::bind_analysis(m);
+    tricell::python::bind_verify(m);
 }

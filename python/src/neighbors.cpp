@@ -48,37 +48,45 @@ py::sequence checked_sequence(const py::handle& value, const char* name) {
     return py::reinterpret_borrow<py::sequence>(value);
 }
 
+} // namespace
+
+void set_cutoff(const py::object& cutoff, NeighborOptions& options) {
+    if (py::isinstance<py::dict>(cutoff)) {
+        for (const auto& entry : cutoff.cast<py::dict>()) {
+            try {
+                const auto key = entry.first.cast<std::pair<std::int32_t, std::int32_t>>();
+                options.species_cutoffs.push_back(
+                    SpeciesCutoff{key.first, key.second, entry.second.cast<double>()});
+            } catch (const py::cast_error&) {
+                throw py::value_error("a cutoff dict maps pairs of integer species to "
+                                      "cutoffs (got " +
+                                      py::repr(entry.first).cast<std::string>() + ": " +
+                                      py::repr(entry.second).cast<std::string>() + ")");
+            }
+        }
+        if (options.species_cutoffs.empty()) {
+            throw py::value_error("the cutoff dict of species pairs is empty");
+        }
+    } else if (!cutoff.is_none()) {
+        try {
+            options.cutoff = cutoff.cast<double>();
+        } catch (const py::cast_error&) {
+            throw py::value_error("cutoff must be a number, a dict of species pairs or None "
+                                  "(got " +
+                                  py::repr(cutoff).cast<std::string>() + ")");
+        }
+    }
+}
+
+namespace {
+
 class PyNeighborList {
   public:
     // cutoff: a float (one cutoff), a dict {(species a, species b): cutoff} (a per-species-pair
     // table; compute() then needs species=) or None (compute() then needs radii=).
     PyNeighborList(const py::object& cutoff, bool full, bool sorted, int threads,
                    const std::string& backend, std::size_t max_pairs, bool grouped) {
-        if (py::isinstance<py::dict>(cutoff)) {
-            for (const auto& entry : cutoff.cast<py::dict>()) {
-                try {
-                    const auto key = entry.first.cast<std::pair<std::int32_t, std::int32_t>>();
-                    options_.species_cutoffs.push_back(
-                        SpeciesCutoff{key.first, key.second, entry.second.cast<double>()});
-                } catch (const py::cast_error&) {
-                    throw py::value_error("a cutoff dict maps pairs of integer species to "
-                                          "cutoffs (got " +
-                                          py::repr(entry.first).cast<std::string>() + ": " +
-                                          py::repr(entry.second).cast<std::string>() + ")");
-                }
-            }
-            if (options_.species_cutoffs.empty()) {
-                throw py::value_error("the cutoff dict of species pairs is empty");
-            }
-        } else if (!cutoff.is_none()) {
-            try {
-                options_.cutoff = cutoff.cast<double>();
-            } catch (const py::cast_error&) {
-                throw py::value_error("cutoff must be a number, a dict of species pairs or None "
-                                      "(got " +
-                                      py::repr(cutoff).cast<std::string>() + ")");
-            }
-        }
+        set_cutoff(cutoff, options_);
         per_atom_radii_ = cutoff.is_none();
         options_.half = !full;
         options_.sorted = sorted;
@@ -93,7 +101,7 @@ class PyNeighborList {
 
     py::object compute(const py::handle& points, const py::handle& box, const py::handle& periodic,
                        const std::string& quantities, bool copy, const py::handle& radii,
-                       const py::handle& species) {
+                       const py::handle& species, const py::handle& query) {
         const DoubleArray x = points_array(points);
         const Box search_box = box_from_rows(box, periodic);
         NeighborOptions options = options_;
@@ -120,6 +128,20 @@ class PyNeighborList {
         }
         if (!species.is_none()) {
             options.species = per_atom_species(species, n);
+        }
+        if (!query.is_none()) {
+            // The search checks each index against the points (naming query[k]).
+            const std::vector<std::int32_t> q = species_array(query, "query");
+            std::vector<std::uint32_t> indices(q.size());
+            for (std::size_t k = 0; k < q.size(); ++k) {
+                if (q[k] < 0) {
+                    throw py::value_error("query[" + std::to_string(k) + "] is " +
+                                          std::to_string(q[k]) + ", not the index of one of the " +
+                                          std::to_string(n) + " positions");
+                }
+                indices[k] = std::uint32_t(q[k]);
+            }
+            options.query = std::move(indices);
         }
 
         std::shared_ptr<NeighborList> list;
@@ -314,6 +336,7 @@ argument with the dtype and shape it got.)doc";
         .def("compute", &PyNeighborList::compute, py::arg("points"), py::arg("box"),
              py::arg("periodic") = true, py::arg("quantities") = "ijSd", py::arg("copy") = true,
              py::arg("radii") = py::none(), py::arg("species") = py::none(),
+             py::arg("query") = py::none(),
              R"doc(
 Computes the list for N x 3 Cartesian points (anywhere, also outside the box) and a 3 x 3 box
 with the lattice vectors as rows; periodic is one bool or three. Returns numpy arrays in the
@@ -321,7 +344,10 @@ order of the letters of quantities: i, j (uint32), S (int32, N x 3), d (float64)
 N x 3), P (uint32, N x 2 pairs (i, j)), o (int64, N + 1 per-atom offsets of a grouped or
 sorted list: atom a's pairs are o[a]:o[a + 1]); one letter returns one array. copy=False
 returns views of the list's own buffers instead of copies (P and o are always new arrays); a
-view stays valid as long as it exists, and later calls never write into memory a view still refers to.)doc")
+view stays valid as long as it exists, and later calls never write into memory a view still refers to.
+query (indices of points, each once) lists only the pairs of those points, every point a
+neighbour: a full list the (i, j, S) with i in query, a half list each pair with both ends in
+query once and each pair with one end in it once, i being that end.)doc")
         .def("compute_batch", &PyNeighborList::compute_batch, py::arg("points"), py::arg("boxes"),
              py::arg("periodic") = true, py::arg("quantities") = "ijSd",
              R"doc(

@@ -353,3 +353,37 @@ def test_read_errors_are_oserrors_with_file_and_line(source_dir, tmp_path):
         tricell.read(bad)
     with pytest.raises(OSError, match="structure.txt"):
         tricell.read(f"{source_dir}/tests/io/data/structure.txt")
+
+
+@pytest.mark.parametrize("seed", range(16))
+def test_query_lists_the_pairs_of_a_subset(seed):
+    # query=: the full list restricted to i in the query; half: also each pair with both ends
+    # in the query once (canonical orientation), and each other pair from its query end.
+    cell, positions, pbc, cutoff, _ = random_system(seed)
+    rng = np.random.default_rng(seed)
+    n = len(positions)
+    query = rng.permutation(n)[: rng.integers(0, n + 1)]
+    inside = np.zeros(n, bool)
+    inside[query] = True
+    fi, fj, fS, fd = tricell.NeighborList(cutoff, sorted=True).compute(positions, cell, pbc)
+    full = tricell.NeighborList(cutoff, sorted=True).compute(positions, cell, pbc, query=query)
+    keep = inside[fi]
+    assert_same_pairs(full, (fi[keep], fj[keep], fS[keep], fd[keep]), f"seed {seed}")
+    half = tricell.NeighborList(cutoff, full=False).compute(positions, cell, pbc, query=query)
+    positive = fS[np.arange(len(fS)), np.argmax(fS != 0, axis=1)] > 0
+    canonical = (fi < fj) | ((fi == fj) & positive)
+    keep = inside[fi] & (~inside[fj] | canonical)
+    assert_same_pairs(sort_pairs(*half), (fi[keep], fj[keep], fS[keep], fd[keep]), f"seed {seed}")
+
+
+def test_query_errors_name_the_entry():
+    points = np.zeros((3, 3))
+    nl = tricell.NeighborList(1.0)
+    with pytest.raises(ValueError, match=r"query\[1\] is -2"):
+        nl.compute(points, np.eye(3) * 4, query=[0, -2])
+    with pytest.raises(ValueError, match=r"query\[0\] is 3, not the index of one of the 3"):
+        nl.compute(points, np.eye(3) * 4, query=[3])
+    with pytest.raises(ValueError, match="already holds"):
+        nl.compute(points, np.eye(3) * 4, query=np.array([1, 1]))
+    with pytest.raises(TypeError, match="query"):
+        nl.compute(points, np.eye(3) * 4, query=["a"])

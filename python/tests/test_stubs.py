@@ -53,7 +53,12 @@ def stub_parameters(node):
     args = node.args.args
     defaults = [inspect.Parameter.empty] * (len(args) - len(node.args.defaults))
     defaults += [ast.literal_eval(d) for d in node.args.defaults]
-    return [(a.arg, d) for a, d in zip(args, defaults)]
+    parameters = [(a.arg, d) for a, d in zip(args, defaults)]
+    if node.args.kwonlyargs:  # pybind11's signature line marks them with a bare "*" too
+        parameters.append(("*", inspect.Parameter.empty))
+        parameters += [(a.arg, inspect.Parameter.empty if d is None else ast.literal_eval(d))
+                       for a, d in zip(node.args.kwonlyargs, node.args.kw_defaults)]
+    return parameters
 
 
 def stub_tree():

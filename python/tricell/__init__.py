@@ -2,7 +2,7 @@
 
 The native part (tricell._tricell, a pybind11 module over the C++ library) provides
 NeighborList, VerletList, DisplacementTracker (the Verlet rebuild rule on its own), Rdf,
-nearest_neighbors and read(); tricell.ase and tricell.pymatgen are drop-in replacements for
+nearest_neighbors, read() and verify() (any code's list against an independent search); tricell.ase and tricell.pymatgen are drop-in replacements for
 ASE's and pymatgen's neighbour-list functions (and ASE's neighbour-list classes) built on it.
 
     import tricell
@@ -18,12 +18,12 @@ from typing import List, NamedTuple, Tuple
 
 import numpy as np
 
-from ._tricell import (DisplacementTracker, NeighborList, Rdf, VerletList, __version__, _read,
-                       backends, nearest_neighbors)
+from ._tricell import (DisplacementTracker, NeighborList, Rdf, VerifyReport, VerletList,
+                       __version__, _read, backends, nearest_neighbors, verify)
 
 __all__ = [
     "NeighborList", "VerletList", "DisplacementTracker", "Rdf", "nearest_neighbors", "Structure",
-    "read", "backends",
+    "read", "backends", "verify", "VerifyReport",
 ]
 
 

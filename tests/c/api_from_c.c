@@ -39,6 +39,7 @@ int main(void) {
     tricell_neighbor_list* list = NULL;
     tricell_neighbor_options options;
     tricell_pairs pairs;
+    tricell_verify_report report;
     tricell_verlet_options verlet_options;
     tricell_verlet* verlet = NULL;
     double origin[3] = {0.25, -7.5, 100.0}; /* any position, even far outside */
@@ -87,6 +88,13 @@ int main(void) {
     CHECK(tricell_neighbors(search, &cubic, fcc, 4, &options, list) == TRICELL_OK);
     CHECK(tricell_neighbor_list_pairs(list, &pairs) == TRICELL_OK);
     CHECK(pairs.size == 4 * 18 / 2 && pairs.offsets == NULL);
+    /* The half list verified, then the same list with its last pair left out. */
+    CHECK(tricell_verify(&cubic, fcc, 4, &options, &pairs, &report) == TRICELL_OK);
+    CHECK(report.ok == 1 && report.entries == 36 && report.expected == 36);
+    CHECK(strcmp(report.reference, "brute force") == 0);
+    pairs.size -= 1;
+    CHECK(tricell_verify(&cubic, fcc, 4, &options, &pairs, &report) == TRICELL_OK);
+    CHECK(report.ok == 0 && report.missing == 1 && strstr(report.message, "is missing") != NULL);
 
     /* An error: the status, the C++ message, and an empty list. */
     options.cutoff = -1.5;

@@ -376,3 +376,65 @@ TEST(CApiOracle, BackendsAndVariableCutoffs_MatchCxxAndBruteForce) {
     EXPECT_GT(pairs_seen, 1000u);
     EXPECT_LT(refused, systems / 4);
 }
+
+TEST(CApiOracle, QuerySubset_MatchesCxx) {
+    // options.query: the C list is the C++ subset list, array for array (whose rules
+    // tests/unit/subset_search_test.cpp checks against the oracle).
+    auto search = make_search();
+    auto list = make_list();
+    for (std::uint64_t seed = 0; seed < case_count / 10; ++seed) {
+        SCOPED_TRACE(seed);
+        const RandomSystem sys = random_system(seed);
+        std::mt19937_64 rng(seed + 29);
+        std::vector<std::uint32_t> query;
+        for (std::uint32_t k = 0; k < sys.positions.size(); ++k) {
+            if (rng() % 3 == 0) {
+                query.push_back(k);
+            }
+        }
+        tricell_neighbor_options o;
+        ASSERT_EQ(tricell_neighbor_options_init(&o), TRICELL_OK);
+        EXPECT_EQ(o.query, nullptr);
+        o.cutoff = sys.cutoff;
+        o.half = int(seed % 2);
+        o.vectors = 1;
+        const std::uint32_t none = 0;
+        o.query = query.empty() ? &none : query.data(); // NULL would mean every point
+        o.query_count = query.size();
+        const tricell_box box = c_box(sys);
+        ASSERT_EQ(tricell_neighbors(search.get(), &box, xyz(sys.positions), sys.positions.size(),
+                                    &o, list.get()),
+                  TRICELL_OK)
+            << tricell_last_error();
+        tricell_pairs pairs;
+        ASSERT_EQ(tricell_neighbor_list_pairs(list.get(), &pairs), TRICELL_OK);
+        tricell::NeighborOptions cxx_options;
+        cxx_options.cutoff = sys.cutoff;
+        cxx_options.half = o.half == 1;
+        cxx_options.quantities.vectors = true;
+        cxx_options.query = query;
+        const tricell::NeighborList cxx =
+            tricell::compute_neighbors(sys.box(), sys.positions, cxx_options);
+        expect_same_list(cxx, pairs, cxx_options.quantities, false);
+    }
+    tricell_neighbor_options o;
+    ASSERT_EQ(tricell_neighbor_options_init(&o), TRICELL_OK);
+    o.cutoff = 1;
+    o.query_count = 5;
+    const double x[3] = {0, 0, 0};
+    tricell_box box;
+    const double rows[9] = {4, 0, 0, 0, 4, 0, 0, 0, 4};
+    const int periodic[3] = {1, 1, 1};
+    ASSERT_EQ(tricell_box_from_rows(rows, periodic, &box), TRICELL_OK);
+    EXPECT_NE(tricell_neighbors(search.get(), &box, x, 1, &o, list.get()), TRICELL_OK);
+    EXPECT_NE(std::string(tricell_last_error())
+                  .find("options.query is NULL but options.query_count is 5"),
+              std::string::npos)
+        << tricell_last_error();
+    const std::uint32_t bad[1] = {1};
+    o.query = bad;
+    o.query_count = 1;
+    EXPECT_NE(tricell_neighbors(search.get(), &box, x, 1, &o, list.get()), TRICELL_OK);
+    EXPECT_NE(std::string(tricell_last_error()).find("query[0] is 1"), std::string::npos)
+        << tricell_last_error();
+}

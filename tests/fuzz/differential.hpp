@@ -4,11 +4,9 @@
 // oracle (tests/support/brute_force.hpp).
 //
 // A pair whose distance is within rounding of its cutoff may be in or out: the search subtracts
-// wrapped positions, the oracle the caller's. The allowance grows with the condition number of
-// the box and the size of the coordinates, the shifts and the translations that wrapped the two
-// atoms into the box (an atom at y = -1e-12 in a box 5 high is stored at 5 - 1e-12, rounded to
-// the last bit of 5). A failure prints one line and aborts, so
-// that libFuzzer keeps the input.
+// wrapped positions, the oracle the caller's; the allowance is the library's own
+// (tricell::rounding_allowance, lib/verify/rounding_allowance.cpp). A failure prints one line
+// and aborts, so that libFuzzer keeps the input.
 #pragma once
 
 #include <cmath>
@@ -23,6 +21,7 @@
 #include <tricell/box.hpp>
 #include <tricell/error.hpp>
 #include <tricell/neighbor_list.hpp>
+#include <tricell/verify.hpp>
 
 #include "support/brute_force.hpp"
 
@@ -122,30 +121,15 @@ inline void check_rules(const Box& box, std::size_t n, bool half, Order order,
     }
 }
 
-/// The rounding allowance of one pair (see the top of the file).
+/// The rounding allowance of one pair: the library's rule (tricell::rounding_allowance), the one
+/// verify() applies.
 struct Tolerance {
     const Box& box;
-    double kappa; // condition number of H
-    double h_norm;
-    Tolerance(const Box& b)
-        : box(b), kappa(b.matrix().norm() * b.inverse().norm()), h_norm(b.matrix().norm()) {}
+    explicit Tolerance(const Box& b) : box(b) {}
     double operator()(const std::vector<Eigen::Vector3d>& x, const PairKey& key,
                       double cutoff) const {
         const auto& [i, j, a, b, c] = key;
-        const double size =
-            x[i].norm() + x[j].norm() +
-            h_norm * (std::abs(a) + std::abs(b) + std::abs(c) + images(x[i]) + images(x[j])) +
-            cutoff;
-        return 512 * std::numeric_limits<double>::epsilon() * kappa * size;
-    }
-    // Box lengths the search's wrap moves a position by (summed over the periodic axes).
-    double images(const Eigen::Vector3d& r) const {
-        const Eigen::Vector3d s = box.inverse() * r;
-        double sum = 0;
-        for (int k = 0; k < 3; ++k) {
-            sum += box.periodic(k) ? std::abs(std::floor(s[k])) : 0.0;
-        }
-        return sum;
+        return rounding_allowance(box, x[i], x[j], Eigen::Vector3i(a, b, c), cutoff);
     }
 };
 

@@ -155,6 +155,41 @@ TEST_F(Cli, NeighborsHalfCsv) {
                           "neighbors_quartz_half.csv");
 }
 
+// --verify writes the same table and one verdict line on stderr (status 3 would be a mismatch).
+TEST_F(Cli, NeighborsVerify) {
+    struct Case {
+        const char* args;
+        const char* golden;
+        const char* verdict;
+    };
+    const Case cases[] = {
+        {"neighbors quartz.cif --cutoff 1.7 --sorted --verify", "neighbors_quartz.tsv",
+         "tricell: verify: ok: 24 entries match 24 pairs of brute force (full list)\n"},
+        {"neighbors quartz.cif --cutoff=1.7 --sorted --half --format csv --verify --threads 2",
+         "neighbors_quartz_half.csv",
+         "tricell: verify: ok: 12 entries match 12 pairs of brute force (half list)\n"},
+        {"neighbors graphene.extxyz --cutoff 1.5 --sorted --verify", "neighbors_graphene.tsv",
+         nullptr},
+        {"neighbors water.xyz --cutoff 1.6 --sorted --verify", "neighbors_water.tsv", nullptr},
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.args);
+        const Result r = run(c.args);
+        EXPECT_EQ(r.status, 0) << r.err;
+        expect_golden(c.golden, r.out);
+        if (c.verdict != nullptr) {
+            EXPECT_EQ(r.err, c.verdict);
+        } else {
+            EXPECT_EQ(r.err.rfind("tricell: verify: ok: ", 0), 0u) << r.err;
+        }
+    }
+    // Many images of a small cell: still brute force, still ok.
+    const Result big = run("neighbors si.vasp --cutoff 9 --half --verify --output " +
+                           output_dir("verify") + "/si.tsv");
+    EXPECT_EQ(big.status, 0) << big.err;
+    EXPECT_EQ(big.err.rfind("tricell: verify: ok: ", 0), 0u) << big.err;
+}
+
 TEST_F(Cli, NeighborsJsonFromPoscar) {
     expect_success_golden(run("neighbors si.vasp --cutoff 2.5 --sorted --format json"),
                           "neighbors_si.json");
@@ -453,7 +488,8 @@ const BadCommand bad_commands[] = {
     {"bench quartz.cif --cutoff 3 --max-pairs=", 2,
      "tricell: bench: --max-pairs needs a value (see tricell bench --help)\n"},
     {"neighbors quartz.cif --nearest 3 --cutoff 2", 2,
-     "tricell: neighbors: --nearest takes no --cutoff, --half or --sorted (see tricell neighbors "
+     "tricell: neighbors: --nearest takes no --cutoff, --half, --sorted or --verify (see tricell "
+     "neighbors "
      "--help)\n"},
     {"neighbors quartz.cif --nearest 0", 2,
      "tricell: neighbors: --nearest must be a whole number in [1, 2147483648], got '0' (see "

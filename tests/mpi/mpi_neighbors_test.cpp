@@ -3,6 +3,7 @@
 // combination of periodic axes, atoms far outside the box, random domain grids and boundaries,
 // cutoffs larger than a domain and than the box. Run under mpirun with 1, 2, 3, 4 and 8 ranks
 // (tests/CMakeLists.txt). Every rank draws the same random system from the seed.
+#include <algorithm>
 #include <random>
 #include <set>
 
@@ -174,6 +175,145 @@ TEST(MpiNeighbors, UnionEqualsSerial_CutoffLargerThanDomains) {
     }
 }
 
+// A pair force and a per-atom energy share that a Newton half list gives to both ends: F on i,
+// -F on j, e / 2 on each (a soft potential, finite for coincident atoms).
+struct PairForce {
+    Eigen::Vector3d f;
+    double e;
+};
+PairForce soft_force(const Eigen::Vector3d& d, double distance, double cutoff) {
+    const double x = cutoff - distance;
+    return PairForce{d * (x * x), x * x * x};
+}
+
+// Newton's third law across ranks: each rank runs the force loop over its half list (forces
+// and energy shares on owned and ghost rows, four doubles per atom), Halo::reverse_sum() adds
+// the ghost rows into their owners, and the owners' rows equal the serial half list's sums to
+// 1e-12 relative. Random systems and domain grids, cutoffs beyond a domain and the box.
+TEST(MpiNeighbors, NewtonHalfList_ReverseSumGivesTheSerialForces) {
+    for (std::uint64_t seed = 0; seed < TRICELL_MPI_CASES / 3 + 6; ++seed) {
+        SCOPED_TRACE(seed);
+        RandomSystem sys = random_system(seed);
+        std::mt19937_64 rng(seed + 2000);
+        Decomposition d(MPI_COMM_WORLD, random_dims(rng));
+        if (seed >= TRICELL_MPI_CASES / 3) { // the cutoff reaches past the nearest domains
+            d = Decomposition(MPI_COMM_WORLD, {{world_size(), 1, 1}});
+            const double width = sys.box().perpendicular_widths()[0] / world_size();
+            sys.cutoff = std::min(2.5 * width, sys.cutoff * 2);
+        } else if (seed % 2 == 1) {
+            random_bounds(d, rng);
+        }
+        const Box box = sys.box();
+        LocalAtoms atoms = deal(sys.positions);
+        tricell::mpi::migrate(d, box, atoms);
+        const NeighborOptions options = options_for(sys.cutoff, true);
+        tricell::mpi::DistributedSearch search;
+        search.build(d, box, atoms, options);
+        tricell::mpi::DistributedPairs pairs;
+        search.compute(pairs);
+        EXPECT_EQ(compare_with_serial(pairs, atoms, box, options, d.comm()), "");
+        const tricell::mpi::Halo& halo = search.halo();
+        std::vector<double> rows(4 * halo.size(), 0.0);
+        for (std::size_t k = 0; k < pairs.size(); ++k) {
+            ASSERT_EQ(halo.ids()[pairs.local_j[k]], pairs.j[k]);
+            const Eigen::Vector3d v(&pairs.vectors[3 * k]);
+            const PairForce p = soft_force(v, pairs.distances[k], sys.cutoff);
+            for (std::size_t c = 0; c < 3; ++c) {
+                rows[4 * pairs.owned[k] + c] += p.f[c];
+                rows[4 * pairs.local_j[k] + c] -= p.f[c];
+            }
+            rows[4 * pairs.owned[k] + 3] += p.e / 2;
+            rows[4 * pairs.local_j[k] + 3] += p.e / 2;
+        }
+        halo.reverse_sum(d, rows, 4);
+        std::vector<double> mine;
+        for (std::size_t a = 0; a < atoms.size(); ++a) {
+            mine.insert(mine.end(), {double(atoms.ids[a]), rows[4 * a], rows[4 * a + 1],
+                                     rows[4 * a + 2], rows[4 * a + 3]});
+        }
+        const std::vector<double> all = gather_to_root(mine, d.comm());
+        std::string verdict;
+        if (world_rank() == 0) {
+            const std::size_t n = sys.positions.size();
+            std::vector<double> expected(4 * n, 0.0), scale(n, 1e-300);
+            // Positions many boxes away carry rounding of eps |x| into every D, serial and
+            // distributed alike: the tolerance grows with |x| / (box size), 1 near the box.
+            double far = 0;
+            for (const Eigen::Vector3d& x : sys.positions) {
+                far = std::max(far, x.norm() / sys.h.norm());
+            }
+            const tricell::NeighborList serial =
+                tricell::compute_neighbors(box, sys.positions, options);
+            for (std::size_t k = 0; k < serial.size(); ++k) {
+                const PairForce p = soft_force(serial.vector(k), serial.distances()[k], sys.cutoff);
+                const std::size_t i = serial.i()[k], j = serial.j()[k];
+                for (std::size_t c = 0; c < 3; ++c) {
+                    expected[4 * i + c] += p.f[c];
+                    expected[4 * j + c] -= p.f[c];
+                }
+                expected[4 * i + 3] += p.e / 2;
+                expected[4 * j + 3] += p.e / 2;
+                scale[i] += p.f.norm() + p.e;
+                scale[j] += p.f.norm() + p.e;
+            }
+            if (all.size() != 5 * n) {
+                verdict = std::to_string(all.size() / 5) + " rows for " + std::to_string(n);
+            }
+            for (std::size_t r = 0; verdict.empty() && 5 * r < all.size(); ++r) {
+                const auto id = std::size_t(all[5 * r]);
+                for (std::size_t c = 0; c < 4; ++c) {
+                    if (!(std::abs(all[5 * r + 1 + c] - expected[4 * id + c]) <=
+                          1e-12 * (1 + far) * scale[id])) {
+                        verdict = "atom " + std::to_string(id) + " value " + std::to_string(c) +
+                                  ": " + std::to_string(all[5 * r + 1 + c]) + ", serial " +
+                                  std::to_string(expected[4 * id + c]);
+                    }
+                }
+            }
+        }
+        EXPECT_EQ(share_verdict(verdict, d.comm()), "");
+    }
+}
+
+// Halo::forward copies each owner's row into its ghosts (any width); a wrong size fails on
+// every rank with the message.
+TEST(MpiNeighbors, HaloForward_CopiesOwnersRowsIntoGhosts) {
+    const RandomSystem sys = random_system(3);
+    Decomposition d(MPI_COMM_WORLD);
+    const Box box = sys.box();
+    LocalAtoms atoms = deal(sys.positions);
+    tricell::mpi::migrate(d, box, atoms);
+    tricell::mpi::DistributedSearch search;
+    search.build(d, box, atoms, options_for(sys.cutoff, true));
+    const tricell::mpi::Halo& halo = search.halo();
+    for (std::size_t width : {std::size_t(1), std::size_t(3)}) {
+        std::vector<double> rows(width * halo.size(), std::nan(""));
+        for (std::size_t a = 0; a < halo.owned_count(); ++a) {
+            for (std::size_t c = 0; c < width; ++c) {
+                rows[width * a + c] = double(halo.ids()[a]) * 1.5 + double(c);
+            }
+        }
+        halo.forward(d, rows, width);
+        int wrong = 0;
+        for (std::size_t a = 0; a < halo.size(); ++a) {
+            for (std::size_t c = 0; c < width; ++c) {
+                wrong += rows[width * a + c] != double(halo.ids()[a]) * 1.5 + double(c);
+            }
+        }
+        MPI_Allreduce(MPI_IN_PLACE, &wrong, 1, MPI_INT, MPI_SUM, d.comm());
+        EXPECT_EQ(wrong, 0);
+        EXPECT_EQ(halo.comm_messages_sent(), int(halo.neighbor_ranks().size()));
+    }
+    std::vector<double> short_rows(world_rank() == 0 ? 1 : 4 * halo.size());
+    std::vector<double> right(4 * halo.size());
+    if (world_rank() == 0) {
+        EXPECT_THROW_MSG(halo.reverse_sum(d, short_rows, 4), tricell::InvalidArgument,
+                         "Halo::reverse_sum needs 4 values per local atom");
+    } else {
+        EXPECT_THROW(halo.reverse_sum(d, right, 4), tricell::InvalidArgument);
+    }
+}
+
 TEST(MpiNeighbors, SortedOutput_IsOrderedByIJS) {
     const RandomSystem sys = random_system(13);
     const Box box = sys.box();
@@ -217,6 +357,45 @@ TEST(MpiMigrate, EveryAtomReachesItsOwner_WithItsPayload) {
         const std::vector<std::uint64_t> before = atoms.ids;
         tricell::mpi::migrate(d, box, atoms);
         EXPECT_EQ(atoms.ids, before);
+    }
+}
+
+// Migration to halo neighbours only: after moves shorter than the halo reach every new owner is
+// a neighbour, and the result (ids, positions, payload, order) is migrate()'s; after long jumps
+// (some owner beyond the neighbours, with 8 ranks in a 8 x 1 x 1 grid) it falls back to it.
+TEST(MpiMigrate, AmongHaloNeighbors_SameAsMigrate) {
+    for (std::uint64_t seed = 0; seed < 8; ++seed) {
+        SCOPED_TRACE(seed);
+        std::mt19937_64 rng(seed);
+        const Eigen::Matrix3d h = random_box_matrix(rng, 8, 12, 0.5);
+        const Box box = Box::from_columns(h, tricell::Periodicity{{true, true, seed % 2 == 0}});
+        std::uniform_real_distribution<double> unit(0, 1);
+        std::vector<Eigen::Vector3d> x(300);
+        for (auto& p : x) {
+            p = h * Eigen::Vector3d(unit(rng), unit(rng), unit(rng));
+        }
+        Decomposition d(MPI_COMM_WORLD,
+                        seed < 4 ? random_dims(rng) : std::array<int, 3>{{world_size(), 1, 1}});
+        LocalAtoms atoms = deal(x, 2);
+        tricell::mpi::migrate(d, box, atoms);
+        const double reach = 0.08 * box.perpendicular_widths().minCoeff();
+        tricell::mpi::Halo halo;
+        halo.build(d, box, atoms.ids, atoms.points(), reach);
+        const bool jump = seed % 4 == 3;
+        std::normal_distribution<double> step(0, jump ? 5.0 : reach / 4);
+        for (double& v : atoms.positions) {
+            v += jump ? step(rng) * 3 : std::clamp(step(rng), -reach / 2, reach / 2);
+        }
+        LocalAtoms expected = atoms;
+        tricell::mpi::migrate(d, box, expected);
+        const bool near = tricell::mpi::migrate(d, box, atoms, halo.neighbor_ranks());
+        EXPECT_TRUE(near || jump);
+        if (jump && world_size() == 8 && d.dims()[0] == 8) {
+            EXPECT_FALSE(near);
+        }
+        EXPECT_EQ(atoms.ids, expected.ids);
+        EXPECT_EQ(atoms.positions, expected.positions);
+        EXPECT_EQ(atoms.payload, expected.payload);
     }
 }
 

@@ -1,5 +1,6 @@
 // The distributed Verlet list against the serial search at every step: an LJ MD run in which
-// atoms cross domains (full lists, energies against the serial md_lj run), and a random walk in
+// atoms cross domains (Newton half lists with reverse_sum, energies and forces against the
+// serial md_lj run), and a random walk in
 // a skewed, partially periodic, slowly sheared box with wrapping (half lists). Run under mpirun
 // with 1, 2, 3, 4 and 8 ranks.
 #include <random>
@@ -31,7 +32,7 @@ template <class T> bool agreed_value(T value) {
     return lo == hi;
 }
 
-TEST(MpiVerlet, LjDynamics_FullListsMatchSerialEveryStep_AtomsCrossDomains) {
+TEST(MpiVerlet, LjDynamics_NewtonHalfListsMatchSerialEveryStep_AtomsCrossDomains) {
     tricell::mpi::Decomposition d(MPI_COMM_WORLD);
     const md_lj::LjSystem system = md_lj::make_fcc(4, 0.8, 1.0, 3);
     md_lj::MdOptions options;
@@ -46,11 +47,21 @@ TEST(MpiVerlet, LjDynamics_FullListsMatchSerialEveryStep_AtomsCrossDomains) {
             serial.step();
         }
         ASSERT_EQ(compare_with_serial(sim.list().pairs(), sim.atoms(), sim.box(),
-                                      serial_options(options.cutoff, false), d.comm()),
+                                      serial_options(options.cutoff, true), d.comm()),
                   "");
         const double n = double(system.positions.size());
         EXPECT_NEAR(sim.total_energy() / n, serial.total_energy() / n, 1e-10);
         EXPECT_NEAR(sim.potential_energy() / n, serial.potential_energy() / n, 1e-10);
+        // Forces (the payload after reverse_sum) against the serial forces of the same atoms.
+        double worst = 0;
+        const tricell::mpi::LocalAtoms& atoms = sim.atoms();
+        for (std::size_t a = 0; a < atoms.size(); ++a) {
+            const Eigen::Vector3d f(&atoms.payload[6 * a + mpi_md::MpiLjSimulation::force]);
+            const Eigen::Vector3d& expected = serial.system().forces[atoms.ids[a]];
+            worst = std::max(worst, (f - expected).norm() / (1 + expected.norm()));
+        }
+        MPI_Allreduce(MPI_IN_PLACE, &worst, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+        EXPECT_LT(worst, 1e-9);
     }
     EXPECT_TRUE(agreed_value(sim.builds()));
     EXPECT_GT(sim.builds(), std::size_t(2));

@@ -7,7 +7,9 @@
 // whose domain contains its wrapped fractional position, positions unchanged. It is one
 // MPI_Alltoall of counts and one MPI_Alltoallv of records, so atoms may go anywhere (a first
 // distribution, a rebalance, a long jump); the received atoms are ordered by source rank, each
-// source's in its own order, so the result is deterministic.
+// source's in its own order, so the result is deterministic. When the atoms have moved only a
+// little since the last halo was built, migrate() with the halo's neighbour ranks does the same
+// with one message to each neighbour instead.
 #pragma once
 
 #include <cstddef>
@@ -40,6 +42,16 @@ struct TRICELL_MPI_API LocalAtoms {
 /// rank (sizes, non-finite positions, different payload widths) throws on every rank, with the
 /// first failing rank's message, before anything moves.
 TRICELL_MPI_API void migrate(const Decomposition& decomposition, const Box& box, LocalAtoms& atoms);
+
+/// Collective: migrate() among neighbour ranks only. `neighbors` (ascending, without this rank)
+/// must be a symmetric relation between ranks, as Halo::neighbor_ranks() is. When every atom
+/// on every rank goes to its own rank or one of its neighbours (the usual case after one Verlet
+/// interval: an atom moves less than the halo reach), one MPI_Allreduce agrees on it and each
+/// rank exchanges one message with each neighbour, so nothing grows with the number of ranks;
+/// the result (order included) is migrate()'s. Otherwise it is migrate(). Returns true when
+/// the neighbours sufficed.
+TRICELL_MPI_API bool migrate(const Decomposition& decomposition, const Box& box, LocalAtoms& atoms,
+                             const std::vector<int>& neighbors);
 
 /// Collective: true on every rank when every atom on every rank is owned by its rank.
 TRICELL_MPI_API bool all_owned(const Decomposition& decomposition, const Box& box,

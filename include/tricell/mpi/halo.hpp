@@ -26,6 +26,14 @@
 // of neighbour ranks exchanges exactly one message per exchange (empty or not), point to point
 // (MPI_Isend, then MPI_Probe / MPI_Get_count / MPI_Recv). update() re-sends the same ghosts with
 // fresh positions (the Verlet steps between rebuilds), into the same slots.
+//
+// Forward and reverse communication of per-atom values (LAMMPS's forward_comm / reverse_comm).
+// forward() copies `width` doubles per owned atom into every ghost of it (charges, densities,
+// velocities); reverse_sum() adds the `width` doubles of every ghost slot into its owner's row
+// (the forces and virial contributions a force loop over a Newton half list put on ghosts). Both
+// use the halo's own neighbour relation and slots: one message each way per neighbour rank,
+// images of a rank's own atoms handled locally, in a fixed order (so the sums are the same on
+// every run).
 #pragma once
 
 #include <cstddef>
@@ -47,6 +55,7 @@ struct HaloStats {
     std::size_t ghosts = 0;
     int neighbor_ranks = 0; ///< other ranks this rank exchanges with (one message each way)
     std::size_t bytes_sent = 0;
+    int messages_sent = 0; ///< messages this rank sent in the exchange (one per neighbour rank)
 };
 
 class TRICELL_MPI_API Halo {
@@ -64,6 +73,20 @@ class TRICELL_MPI_API Halo {
     /// atom's image c follows its caller position across wrapping (the rounded fractional jump
     /// since the build), so y stays continuous.
     void update(const Decomposition& decomposition, const Box& box, PointsView positions);
+
+    /// Collective. values holds `width` doubles per local atom (size() rows, owned first): each
+    /// ghost row becomes a copy of its owner's row. InvalidArgument on every rank when a size
+    /// differs.
+    void forward(const Decomposition& decomposition, std::vector<double>& values,
+                 std::size_t width) const;
+    /// Collective. values holds `width` doubles per local atom (size() rows, owned first): each
+    /// ghost row is added into its owner's row (on this rank or another); ghost rows are left as
+    /// they were. InvalidArgument on every rank when a size differs.
+    void reverse_sum(const Decomposition& decomposition, std::vector<double>& values,
+                     std::size_t width) const;
+    /// Bytes and messages this rank sent in its last forward() or reverse_sum().
+    std::size_t comm_bytes_sent() const { return comm_bytes_; }
+    int comm_messages_sent() const { return comm_messages_; }
 
     std::size_t owned_count() const { return owned_; }
     std::size_t ghost_count() const { return ids_.size() - owned_; }
@@ -93,6 +116,10 @@ class TRICELL_MPI_API Halo {
         std::int32_t t[3];
     };
     void exchange(const Decomposition& decomposition, const Box& box, bool first);
+    // The first local slot of the ghosts received from neighbour n.
+    std::size_t first_slot(std::size_t n) const;
+    void check_values(const Decomposition& decomposition, const std::vector<double>& values,
+                      std::size_t width, const char* what) const;
 
     double reach_ = 0;
     std::size_t owned_ = 0;
@@ -113,6 +140,8 @@ class TRICELL_MPI_API Halo {
     // Per neighbour rank: how many ghosts it sent at the build (the slots of update()).
     std::vector<std::size_t> received_;
     HaloStats stats_;
+    mutable std::size_t comm_bytes_ = 0;
+    mutable int comm_messages_ = 0;
 };
 
 } // namespace tricell::mpi

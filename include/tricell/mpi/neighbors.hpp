@@ -1,19 +1,24 @@
 // Neighbour lists over ranks: each rank lists the pairs of the atoms it owns.
 //
 // A rank gathers ghosts within the cutoff of its domain (tricell::mpi::Halo), then runs the
-// ordinary serial search (tricell::NeighborSearch, any backend, with the caller's options) over
-// its owned and ghost atoms in their continuous local frame, in the box's frame with every axis
-// open (the ghosts already are the periodic images). That local search is a half list; each
-// local pair a -> b (and b -> a) maps to the global pair (id(a), id(b), S = c_a - c_b), see
-// halo.hpp, and is kept by the rule below. Over all ranks (docs/contract.md, MPI):
+// serial search (tricell::NeighborSearch, any backend, with the caller's options) over its
+// owned and ghost atoms in their continuous local frame, in the box's frame with every axis
+// open (the ghosts already are the periodic images), as a half list of the subset of the owned
+// atoms (NeighborOptions::query): owned-owned pairs once, owned-ghost pairs once from the owned
+// end, ghost-ghost pairs never searched. Each local pair a -> b (and b -> a when both are owned)
+// maps to the global pair (id(a), id(b), S = c_a - c_b), see halo.hpp, and is kept by the rule
+// below. Over all ranks (docs/contract.md, MPI):
 //
 // - full list: every (i, j, S) of the serial full list with i owned by this rank, once;
 // - half list (ownership rule): the pair is reported in the serial list's canonical orientation
 //   (i < j, or i == j with S lexicographically positive) by the rank that owns that i, once.
 //   Every rank sees all pairs of the atoms it owns, so each pair is reported exactly once over
-//   all ranks and the union equals the serial half list. (The partner j may be a ghost: a force
-//   loop over a half list must send the ghosts' forces back; the full list needs no reverse
-//   communication and is what examples/mpi_md uses.)
+//   all ranks and the union equals the serial half list. This is Newton's third law across
+//   ranks ("newton on" in LAMMPS, which decides owned-ghost pairs by coordinates; here the
+//   global ids decide): a pair whose j is a ghost is listed by one of the two owners only, so a
+//   force loop adds the pair's force to i and its opposite to the ghost row local_j, and
+//   Halo::reverse_sum() (or DistributedVerletList::reverse_sum()) then adds every ghost's force
+//   into its owner. A full list needs no reverse communication but computes each force twice.
 //
 // Indices are global ids; S is relative to the positions the owners hold; D = x_j - x_i + H S
 // and d are computed from the local frame (the same doubles as a serial search up to rounding).
@@ -38,11 +43,15 @@ namespace tricell::mpi {
 struct TRICELL_MPI_API DistributedPairs : BasicPairColumns<std::uint64_t> {
     /// Index of i among the caller's owned atoms (LocalAtoms order), per pair.
     std::vector<std::uint32_t> owned;
+    /// Index of j among the halo's local atoms (owned first, in LocalAtoms order, then ghosts),
+    /// per pair: where a force loop puts the force on j before Halo::reverse_sum().
+    std::vector<std::uint32_t> local_j;
 
     /// Empties the lists, keeping their capacity.
     void clear() {
         BasicPairColumns<std::uint64_t>::clear();
         owned.clear();
+        local_j.clear();
     }
 };
 
