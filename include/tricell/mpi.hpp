@@ -30,8 +30,9 @@
 // messages) and the local build. So only the Allreduce latencies (log P) grow with P, and the
 // Alltoall when atoms jump past the halo. Local work per rank is the subset search
 // (NeighborOptions::query) of the n owned atoms against the n (1 + g) local ones (no
-// ghost-ghost pair is searched), plus the force loop over the half list (each pair once over all ranks) and one reverse_sum of the ghosts' forces per
-// step: M messages, 8 w g n bytes for w doubles per ghost (24 g n for forces).
+// ghost-ghost pair is searched), plus the force loop over the half list (each pair once over all
+// ranks) and one reverse_sum of the ghosts' forces per step: M messages, 8 w g n bytes for w
+// doubles per ghost (24 g n for forces).
 //     n = 500:    l = 8.5,  g = 3.53 (r = 2.8),  9.21 (r = 5.0)
 //     n = 4000:   l = 17.1, g = 1.34 (r = 2.8),  2.98 (r = 5.0)
 //     n = 32000:  l = 34.2, g = 0.58 (r = 2.8),  1.16 (r = 5.0)
