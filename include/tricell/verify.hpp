@@ -11,8 +11,10 @@
 // are checked entry by entry: indices in range, no (i, i, 0), S = 0 along open axes, and the
 // listed d and D (when given) equal to the recomputed ones. A full list must hold both
 // orientations of every pair; a half list may hold either orientation of each pair, (i, j, S)
-// or (j, i, -S), but exactly once. A pair whose distance is within rounding_allowance() of its
-// cutoff may be present or absent: different but correct arithmetic decides it either way.
+// or (j, i, -S), but exactly once. With options.query the list expected is the query's: the
+// pairs with i in the query (full), or with either end in it (half). A pair whose distance is
+// within rounding_allowance() of its cutoff may be present or absent: different but correct
+// arithmetic decides it either way.
 //
 // The report counts every kind of difference and describes the first one in words (entries in
 // list order first, then pairs in (i, j, S) order), e.g. "pair (3, 17, [0 1 0]) at distance 2.31
@@ -74,7 +76,7 @@ TRICELL_API double rounding_allowance(const Box& box, const Eigen::Vector3d& xi,
                                       double cutoff);
 
 /// Checks plain arrays against the reference for (box, positions, options); options.cutoff, or
-/// radii or species with species_cutoffs, and options.half say which list is expected
+/// radii or species with species_cutoffs, options.half and options.query say which list is expected
 /// (options.threads and options.max_pairs bound the reference search; the other fields do not
 /// matter).
 TRICELL_API VerifyReport verify(const Box& box, PointsView positions,

@@ -32,8 +32,9 @@ std::vector<std::size_t> grouping(PairColumns& columns, std::size_t atoms) {
 
 // Copies each run [runs[r], runs[r + 1]) of column `from` (width values per pair) to the place
 // its atom's cursor gives in `to`, advancing the cursor: a counting sort that moves runs, not
-// pairs. Then `from` holds the result and `to` is empty, with the old column's memory for the
-// next call.
+// pairs. Then `from` holds the result and `to` is empty and holds no memory: the old column is
+// freed before the next column is scattered, so the grouping needs room for one column more than
+// the list, never a second list (docs/memory.md).
 template <class T>
 void scatter_runs(PairArray<T>& from, PairArray<T>& to, const std::vector<std::size_t>& runs,
                   const PairArray<std::uint32_t>& is, std::vector<std::size_t> cursor,
@@ -51,7 +52,7 @@ void scatter_runs(PairArray<T>& from, PairArray<T>& to, const std::vector<std::s
         at += length;
     }
     from.swap(to);
-    to.clear(); // keeps the memory
+    PairArray<T>().swap(to); // frees the old column
 }
 
 } // namespace

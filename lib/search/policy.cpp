@@ -148,10 +148,11 @@ double estimated_system_pairs(const Box& box, std::size_t atoms, const Eigen::Ve
     return std::isnan(pairs) ? 0 : pairs;
 }
 
-std::size_t pair_room(double expected) {
-    return std::isfinite(expected) && expected < 1.6e7
+std::size_t pair_room(double expected, std::size_t limit) {
+    const double cap = limit != 0 ? double(limit) : double(std::size_t(1) << 24);
+    return std::isfinite(expected) && expected * 1.1 + 1024 < cap
                ? static_cast<std::size_t>(expected * 1.1) + 1024
-               : std::size_t(1) << 24;
+               : static_cast<std::size_t>(cap);
 }
 
 BatchPlan plan_batches(const std::vector<double>& work, const std::vector<double>& expected,

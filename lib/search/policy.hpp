@@ -62,9 +62,11 @@ SearchBackend automatic_backend(const Box& frame, const std::vector<Eigen::Vecto
 double estimated_system_pairs(const Box& frame, std::size_t atoms, const Eigen::Vector3d& lower,
                               const Eigen::Vector3d& upper, double cutoff, bool half);
 
-/// Pairs to reserve room for when `expected` are expected: a tenth more, at most 2^24 pairs per
-/// list (untouched reserved memory is never resident, so the columns rarely grow).
-std::size_t pair_room(double expected);
+/// Pairs to reserve room for when `expected` are expected: a tenth more, at most `limit` (the
+/// pair limit), or 2^24 pairs when there is no limit (0). Untouched reserved memory is never
+/// resident, so a list within the estimate never grows, and so never holds an old and a new copy
+/// of its columns at once (docs/memory.md).
+std::size_t pair_room(double expected, std::size_t limit = 0);
 
 /// How a threaded compute() splits units: batch b is units [bounds[b], bounds[b + 1]) with room
 /// for reserve[b] pairs.

@@ -153,7 +153,7 @@ void NeighborSearch::compute(NeighborList& out) const {
         }
         if (threads == 1) {
             detail::PairSink sink(columns_of(columns), s.options.max_pairs,
-                                  detail::pair_room(total));
+                                  detail::pair_room(total, s.options.max_pairs));
             detail::CandidateScanner scan = s.scanner(sink);
             s.backend->visit(0, units, scan);
             sink.finish();
@@ -163,13 +163,14 @@ void NeighborSearch::compute(NeighborList& out) const {
                 work[u] = occupancy_work(occupancy.atoms[u], occupancy.neighbours);
             }
             const detail::BatchPlan plan = detail::plan_batches(work, expected, threads);
-            detail::ordered_search(columns_of(columns), plan,
-                                   std::max(detail::pair_room(total), columns.i.capacity()),
-                                   s.options.max_pairs, threads, out.thread_columns(), columns_of,
-                                   [&](std::size_t b, detail::PairSink& sink) {
-                                       detail::CandidateScanner scan = s.scanner(sink);
-                                       s.backend->visit(plan.bounds[b], plan.bounds[b + 1], scan);
-                                   });
+            detail::ordered_search(
+                columns_of(columns), plan,
+                std::max(detail::pair_room(total, s.options.max_pairs), columns.i.capacity()),
+                s.options.max_pairs, threads, out.thread_columns(), columns_of,
+                [&](std::size_t b, detail::PairSink& sink) {
+                    detail::CandidateScanner scan = s.scanner(sink);
+                    s.backend->visit(plan.bounds[b], plan.bounds[b + 1], scan);
+                });
         }
         if (s.reduced_frame && keep_shifts) {
             detail::to_caller_frame(columns.shifts, s.to_caller);
@@ -178,7 +179,7 @@ void NeighborSearch::compute(NeighborList& out) const {
             detail::sort_pairs(columns, s.atom_count);
         } else if (s.options.grouped) {
             // The grouping's scratch: the first batch's columns, which a threaded search has
-            // emptied into `columns` by now.
+            // emptied into `columns` by now (group_pairs() leaves it holding no pair column).
             std::vector<PairColumns>& scratch = out.thread_columns();
             if (scratch.empty()) {
                 scratch.emplace_back();

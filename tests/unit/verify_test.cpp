@@ -158,6 +158,36 @@ TEST(Verify, AcceptsOwnListsWithVariableCutoffs) {
     }
 }
 
+// A list of a query's pairs (NeighborOptions::query) is checked against the reference's pairs
+// of the query; the same list under options of every point misses the others' pairs.
+TEST(Verify, ChecksTheListOfAQuery) {
+    for (std::uint64_t seed = 0; seed < cases / 4; ++seed) {
+        const RandomSystem sys = random_system(seed);
+        const Box box = sys.box();
+        NeighborOptions o = all_quantities(sys.cutoff, seed % 2 == 1);
+        std::vector<std::uint32_t> query;
+        for (std::uint32_t k = 0; k < sys.positions.size(); k += 3) {
+            query.push_back(k);
+        }
+        o.query = query;
+        SCOPED_TRACE("seed " + std::to_string(seed) + " (" + sys.kind + ")");
+        const NeighborList list = tricell::compute_neighbors(box, sys.positions, o);
+        const VerifyReport report = tricell::verify(box, sys.positions, o, list);
+        EXPECT_TRUE(report.ok) << report.message;
+        NeighborOptions every = o;
+        every.query.reset();
+        const std::size_t all = tricell::compute_neighbors(box, sys.positions, every).size();
+        if (all > list.size()) {
+            EXPECT_FALSE(tricell::verify(box, sys.positions, every, list).ok);
+        }
+        if (list.size() > 0) {
+            Arrays arrays(list);
+            arrays.erase(0);
+            EXPECT_FALSE(tricell::verify(box, sys.positions, o, arrays.view()).ok);
+        }
+    }
+}
+
 // Systems above the brute-force budget: the reference is a backend the automatic choice does
 // not take, and it agrees with the list of every backend.
 TEST(Verify, LargeSystemsUseAnotherBackend) {
