@@ -5,11 +5,12 @@
 // The system: N random atoms (--atoms, default 10^7) at a liquid's density (--density, atoms per
 // A^3, default 0.0334, water) in a triclinic cell (angles 80, 95, 110 degrees); a cutoff
 // (--cutoff, A), full or half (--half), i, j, S, d stored (--quantities, any of ijSdD with i and
-// j), unordered or --grouped or --sorted, on --threads T threads, with --max-pairs P (0: no limit).
-// Prints the resident memory after the positions are made (the caller's O(N)), after build()
-// (the search's O(N)), the peak, the pairs, the bytes of the returned arrays, and the model's
-// bound for the peak: before-build + build's O(N) + the returned arrays times the order's factor.
-// A refused search prints its message and the peak, which must then be only the O(N) parts.
+// j), unordered or --grouped or --sorted, on --threads T threads, with --max-pairs P and
+// --max-bytes B (0: no limit; by default the library's). Prints the resident memory after the
+// positions are made (the caller's O(N)), after build() (the search's O(N)), the peak, the pairs,
+// the bytes of the returned arrays, the list's peak by the library's model (list_memory(), what
+// max_bytes is checked against) and the bound: after build + 1.2 x the model's peak. A refused
+// search prints its message and the peak, which must then be only the O(N) parts.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -25,6 +26,8 @@
 #include <tricell/box.hpp>
 #include <tricell/error.hpp>
 #include <tricell/neighbor_list.hpp>
+
+#include "search/list_limits.hpp"
 
 namespace {
 
@@ -76,6 +79,8 @@ int main(int argc, char** argv) {
             options.threads = std::atoi(argv[++a]);
         } else if (arg == "--max-pairs" && has_value) {
             options.max_pairs = std::size_t(std::atof(argv[++a]));
+        } else if (arg == "--max-bytes" && has_value) {
+            options.max_bytes = std::size_t(std::atof(argv[++a]));
         } else if (arg == "--quantities" && has_value) {
             quantities = argv[++a];
         } else if (arg == "--half") {
@@ -124,17 +129,11 @@ int main(int argc, char** argv) {
         const double returned =
             double(c.i.size() * 4 + c.j.size() * 4 + c.shifts.size() * 4 + c.distances.size() * 8 +
                    c.vectors.size() * 8 + c.offsets.size() * 8);
-        // The order's factor on the returned pair arrays (docs/memory.md): grouping needs one more
-        // column (the widest stored) and a run index, sorting a permutation and one more column.
-        const double widest = options.quantities.vectors     ? 24
-                              : options.quantities.shifts    ? 12
-                              : options.quantities.distances ? 8
-                                                             : 4;
+        // The list's peak by the library's model (docs/memory.md), what max_bytes bounds.
+        const double list_peak =
+            tricell::detail::list_memory(options).peak(double(list.size()), atoms);
         const double per_pair = returned / double(std::max<std::size_t>(1, list.size()));
-        const double factor = options.sorted    ? (per_pair + 8 + widest) / per_pair
-                              : options.grouped ? (per_pair + 8 + widest) / per_pair
-                                                : 1.0;
-        const double model = built + 1.2 * factor * returned;
+        const double model = built + 1.2 * list_peak;
         std::printf("atoms %zu cutoff %g %s threads %d quantities %s order %s\n", atoms, cutoff,
                     options.half ? "half" : "full", options.threads, quantities.c_str(),
                     options.sorted    ? "sorted"
@@ -144,12 +143,15 @@ int main(int argc, char** argv) {
                     list.size(), search.estimated_pairs(), gib(returned), per_pair);
         std::printf("RSS: positions %.3f GiB, after build %.3f GiB (build's O(N) %.3f GiB)\n",
                     gib(before), gib(built), gib(built - before));
-        std::printf("peak RSS %.3f GiB; peak - after build = %.3f x returned arrays; model bound "
-                    "%.3f GiB: %s\n",
-                    gib(peak), (peak - built) / returned, gib(model),
+        std::printf("model's list peak %.3f GiB (max_bytes %.3f GiB)\n", gib(list_peak),
+                    gib(double(options.max_bytes)));
+        std::printf("peak RSS %.3f GiB; peak - after build = %.3f x returned arrays = %.3f x the "
+                    "model's list peak; bound %.3f GiB: %s\n",
+                    gib(peak), (peak - built) / returned, (peak - built) / list_peak, gib(model),
                     peak <= model ? "within" : "OVER");
     } catch (const tricell::Error& e) {
-        std::printf("refused: %s\n", e.what());
+        std::printf("atoms %zu cutoff %g quantities %s refused: %s\n", atoms, cutoff,
+                    quantities.c_str(), e.what());
         std::printf("RSS: positions %.3f GiB, peak RSS %.3f GiB (peak - positions %.3f GiB)\n",
                     gib(before), gib(peak_bytes()), gib(peak_bytes() - before));
     }

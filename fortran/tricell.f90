@@ -39,7 +39,7 @@ module tricell
     type, bind(c) :: c_neighbor_options
         real(c_double) :: cutoff
         integer(c_int) :: half, sorted, grouped, shifts, distances, vectors, threads, backend
-        integer(c_size_t) :: max_pairs
+        integer(c_size_t) :: max_pairs, max_bytes
         type(c_ptr) :: radii, species, species_cutoffs
         integer(c_size_t) :: species_cutoff_count
         type(c_ptr) :: query

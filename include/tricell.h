@@ -124,6 +124,8 @@ typedef struct tricell_neighbor_options {
     int threads;      /* threads for the search (default 1, 0 = all cores); same list */
     int backend;      /* a tricell_backend (default TRICELL_BACKEND_AUTOMATIC); same list */
     size_t max_pairs; /* refuse a list larger than this (default 5e8; 0 = no limit) */
+    size_t max_bytes; /* refuse a list whose memory at its peak (docs/memory.md) passes this
+                       * many bytes (default 3/4 of the physical memory; 0 = no limit) */
     /* Variable cutoffs (NULL: unused). radii: N per-atom radii, a pair counts when
      * d < radii[i] + radii[j]. species: N per-atom species, with species_cutoffs (a table of
      * species_cutoff_count entries): a pair counts when d < the table's cutoff for its two
@@ -201,8 +203,8 @@ typedef struct tricell_verify_report {
  * code filled in by hand: size, i, j, shifts, and optionally distances and vectors; offsets and
  * atoms are ignored) against an independent search of the n positions in box with options
  * (cutoff, or radii or species with species_cutoffs, and half say which list is expected;
- * threads and max_pairs bound the reference search; the other fields are ignored). A full list
- * must hold both orientations of every pair, a half list either orientation of each pair
+ * threads, max_pairs and max_bytes bound the reference search; the other fields are ignored). A
+ * full list must hold both orientations of every pair, a half list either orientation of each pair
  * exactly once. shifts may be NULL only when no axis is periodic. Returns TRICELL_OK whenever
  * the check ran, whatever its verdict (report->ok); an error status only for bad arguments (a
  * NULL pointer, a non-finite position, invalid options), with report untouched. */
@@ -231,7 +233,7 @@ TRICELL_C_API void tricell_batch_list_destroy(tricell_batch_list* list);
  * its own box, periodicity and positions and one set of options for all: every structure gets
  * exactly the pairs, order and values tricell_neighbors() gives it alone, stored one structure
  * after the other in shared arrays. options.threads threads work across structures (0 = all
- * cores); the result does not depend on it. options.max_pairs bounds the whole batch.
+ * cores); the result does not depend on it. options.max_pairs and max_bytes bound the whole batch.
  * options.radii and options.species must be NULL (one cutoff, or one species table without
  * per-atom species, cannot serve structures of different sizes). On failure the list is empty
  * and the message names the lowest failing structure ("structure 17: position 3 is not finite

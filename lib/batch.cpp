@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "detail/parallel.hpp"
+#include "search/list_limits.hpp"
 #include "search/policy.hpp"
 #include "tricell/error.hpp"
 
@@ -32,7 +33,7 @@ struct BatchWorker {
     try {
         throw;
     } catch (const PairLimitError& e) {
-        throw PairLimitError(cat("structure ", s, ": ", e.subject()), e.pairs(), e.limit());
+        throw e.with_subject(cat("structure ", s, ": ", e.subject()));
     } catch (const InvalidArgument& e) {
         detail::fail<InvalidArgument>("structure ", s, ": ", e.what());
     } catch (const GeometryError& e) {
@@ -45,10 +46,6 @@ struct BatchWorker {
 } // namespace detail
 
 namespace {
-
-[[noreturn]] void fail_batch_over_limit(double pairs, std::size_t limit) {
-    throw PairLimitError("the batch has too many pairs in total", pairs, limit);
-}
 
 // Appends all of `from` to `to`.
 template <class T> void append(PairArray<T>& to, const PairArray<T>& from) {
@@ -102,6 +99,13 @@ void compute_neighbors_batch(const BatchStructure* structures, std::size_t count
         detail::fail<InvalidArgument>("structures: null data for ", count, " structures");
     }
     const Quantities& q = options.quantities;
+    // The whole batch's list is held to max_pairs and max_bytes (with every structure's atoms).
+    std::size_t all_atoms = 0;
+    for (std::size_t s = 0; s < count; ++s) {
+        all_atoms += structures[s].positions.size();
+    }
+    const detail::ListLimits limits(options, all_atoms);
+    const char* const batch_over_limit = "the batch has too many pairs in total";
     std::size_t threads = options.threads > 0
                               ? std::size_t(options.threads)
                               : std::max<std::size_t>(1, std::thread::hardware_concurrency());
@@ -135,8 +139,8 @@ void compute_neighbors_batch(const BatchStructure* structures, std::size_t count
                 w.search.build(structures[s].box, structures[s].positions, one);
                 w.search.compute(w.scratch);
                 const NeighborList& list = w.scratch;
-                if (options.max_pairs != 0 && columns.size() + list.size() > options.max_pairs) {
-                    fail_batch_over_limit(double(columns.size() + list.size()), options.max_pairs);
+                if (limits.pairs() != 0 && columns.size() + list.size() > limits.pairs()) {
+                    limits.fail_size(columns.size() + list.size(), batch_over_limit);
                 }
                 append(columns.i, list.i());
                 append(columns.j, list.j());
@@ -183,8 +187,8 @@ void compute_neighbors_batch(const BatchStructure* structures, std::size_t count
         for (std::size_t s = 0; s < count; ++s) {
             out.atom_offsets_[s + 1] = out.atom_offsets_[s] + structures[s].positions.size();
         }
-        if (options.max_pairs != 0 && total > options.max_pairs) {
-            fail_batch_over_limit(double(total), options.max_pairs);
+        if (limits.pairs() != 0 && total > limits.pairs()) {
+            limits.fail_size(total, batch_over_limit);
         }
 
         // Join the other runs' columns after run 0's, each run copied by its own thread.

@@ -61,7 +61,7 @@ std::string bench_help() {
     std::vector<std::string> backends = backend_names();
     backends.front() += " (default)";
     return R"(usage: tricell bench FILE --cutoff R [--half] [--quantities ijSdD] [--repeat K]
-                     [--threads T] [--backend B] [--max-pairs N]
+                     [--threads T] [--backend B] [--max-pairs N] [--max-bytes N]
                      [--input-format cif|xyz|poscar]
        tricell bench --list-backends
 
@@ -83,6 +83,9 @@ Options:
   --list-backends     print the names --backend takes, one per line, and nothing else
   --max-pairs N       refuse lists of more than N pairs before allocating them (default
                       500000000; 0 = no limit)
+  --max-bytes N       refuse lists whose memory would pass N bytes (a suffix K, M, G or T
+                      counts powers of 1024: 16G) before allocating them (default three
+                      quarters of the physical memory; 0 = no limit)
   --input-format F    cif, xyz or poscar, instead of the guess from the file name
   -h, --help          this help
 )";
@@ -119,6 +122,7 @@ int run_bench(Arguments& arguments) {
             repeat = long(arguments.whole(1, 1000000));
         } else if (take_threads(arguments, options.threads)) {
         } else if (take_max_pairs(arguments, options.max_pairs)) {
+        } else if (take_max_bytes(arguments, options.max_bytes)) {
         } else if (arguments.option("--backend")) {
             const std::string name = arguments.value();
             try {

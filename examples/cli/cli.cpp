@@ -1,6 +1,7 @@
 #include "cli.hpp"
 #include "text.hpp"
 
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -253,6 +254,36 @@ bool take_max_pairs(Arguments& arguments, std::size_t& max_pairs) {
                        arguments.value() + "'");
     }
     max_pairs = std::size_t(n);
+    return true;
+}
+
+bool take_max_bytes(Arguments& arguments, std::size_t& max_bytes) {
+    if (!arguments.option("--max-bytes")) {
+        return false;
+    }
+    const std::string& text = arguments.value();
+    std::size_t end = 0;
+    double n = -1;
+    try {
+        n = std::stod(text, &end);
+    } catch (const std::exception&) {
+        end = 0;
+    }
+    double unit = 1;
+    if (end > 0 && end + 1 == text.size()) {
+        const std::string units = "KMGT";
+        const std::size_t power = units.find(char(std::toupper(text[end])));
+        unit = power == std::string::npos ? 0 : std::ldexp(1.0, 10 * int(power + 1));
+        ++end;
+    }
+    const double bytes = n * unit;
+    if (end == 0 || end != text.size() || !(bytes >= 0 && bytes <= 0x1p63) ||
+        bytes != std::floor(bytes)) {
+        arguments.fail("--max-bytes must be a whole number of bytes in [0, 2^63], or a size with "
+                       "K, M, G or T (powers of 1024) such as 16G, got '" +
+                       text + "'");
+    }
+    max_bytes = std::size_t(bytes);
     return true;
 }
 

@@ -89,6 +89,10 @@ bool take_input(Arguments& arguments, io::ReadOptions& read_options, std::string
 /// --max-pairs N (a whole number, 0 = no limit): consumes it into max_pairs and says whether
 /// it did. The library refuses a larger list before allocating it.
 bool take_max_pairs(Arguments& arguments, std::size_t& max_pairs);
+/// --max-bytes N (bytes, or with a suffix K, M, G or T for powers of 1024; 0 = no limit):
+/// consumes it into max_bytes and says whether it did. The library refuses a list whose memory
+/// would pass it before allocating it.
+bool take_max_bytes(Arguments& arguments, std::size_t& max_bytes);
 /// The text formats of the tables (--format).
 enum class TableFormat { tsv, csv, json };
 /// --format tsv|csv|json: consumes it into format and says whether it did.

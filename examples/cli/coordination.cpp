@@ -16,7 +16,7 @@ namespace tricell::cli {
 // The text of 'tricell coordination --help', for the row of dispatch.cpp's table.
 std::string coordination_help() {
     return R"(usage: tricell coordination FILE (--cutoff R | --bond A-B=R ...) [--summary]
-                            [--plot PATH.svg|PATH.png] [--max-pairs N]
+                            [--plot PATH.svg|PATH.png] [--max-pairs N] [--max-bytes N]
                             [--input-format cif|xyz|poscar]
 
 For every atom, counts the neighbours j (periodic images included) at distance d < cutoff,
@@ -42,6 +42,9 @@ Options:
                       SVG (*.svg) or PNG (*.png) image, completely or not at all
   --max-pairs N       refuse a search of more than N pairs before allocating it (default
                       500000000; 0 = no limit)
+  --max-bytes N       refuse a search whose list would pass N bytes of memory (a suffix K, M,
+                      G or T counts powers of 1024: 16G) before allocating it (default three
+                      quarters of the physical memory; 0 = no limit)
   --input-format F    cif, xyz or poscar, instead of the guess from the file name
   -h, --help          this help
 )";
@@ -157,6 +160,7 @@ int run_coordination(Arguments& arguments) {
             summary = true;
         } else if (take_plot(arguments, plot_path)) {
         } else if (take_max_pairs(arguments, options.max_pairs)) {
+        } else if (take_max_bytes(arguments, options.max_bytes)) {
         } else if (!take_input(arguments, read_options, file)) {
             arguments.unknown();
         }

@@ -117,9 +117,12 @@ const Command* find_command(const std::string& name) {
                      " (see tricell --help)");
 }
 
-// A refused pair limit in the command's words: the limit is the option --max-pairs, where 0
-// lifts it.
+// A refused pair or memory limit in the command's words: the limit is the option --max-pairs
+// or --max-bytes, where 0 lifts it.
 std::string pair_limit_message(const PairLimitError& e) {
+    if (e.which() == PairLimitError::Limit::bytes) {
+        return e.message_for("--max-bytes " + e.limit_text(), "--max-bytes");
+    }
     return e.message_for("--max-pairs " + std::to_string(e.limit()), "--max-pairs") +
            " (0 = no limit)";
 }

@@ -18,8 +18,8 @@ namespace tricell::cli {
 // The text of 'tricell neighbors --help', for the row of dispatch.cpp's table.
 std::string neighbors_help() {
     return R"(usage: tricell neighbors FILE --cutoff R [--half] [--sorted] [--format tsv|csv|json]
-                         [--output PATH] [--max-pairs N] [--threads T] [--verify] [--quiet]
-                         [--input-format cif|xyz|poscar]
+                         [--output PATH] [--max-pairs N] [--max-bytes N] [--threads T]
+                         [--verify] [--quiet] [--input-format cif|xyz|poscar]
        tricell neighbors FILE --nearest K [--format tsv|csv|json] [--output PATH]
                          [--max-pairs N] [--threads T] [--quiet]
                          [--input-format cif|xyz|poscar]
@@ -44,6 +44,9 @@ Options:
   --max-pairs N       refuse lists of more than N pairs before allocating them (default
                       500000000, about 14 GB; 0 = no limit); with --nearest, refuse K times
                       the number of atoms above N
+  --max-bytes N       refuse lists whose memory would pass N bytes (a suffix K, M, G or T
+                      counts powers of 1024: 16G) before allocating them (default three
+                      quarters of the physical memory; 0 = no limit)
   --threads T         threads of the search and of the formatting of the table, 0 = all
                       hardware threads (default 1); the output is the same for any T
   --verify            after writing the list, check it against an independent search (brute
@@ -96,6 +99,7 @@ int run_neighbors(Arguments& arguments) {
         } else if (arguments.option("--output")) {
             output = arguments.value();
         } else if (take_max_pairs(arguments, options.max_pairs)) {
+        } else if (take_max_bytes(arguments, options.max_bytes)) {
         } else if (take_threads(arguments, options.threads)) {
         } else if (!take_input(arguments, read_options, file)) {
             arguments.unknown();

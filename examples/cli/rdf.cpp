@@ -276,7 +276,7 @@ int run_rdf(Arguments& arguments) {
         } catch (const GeometryError& e) {
             throw GeometryError(where + e.what());
         } catch (const PairLimitError& e) {
-            throw PairLimitError(where + e.subject(), e.pairs(), e.limit());
+            throw e.with_subject(where + e.subject());
         } catch (const InvalidArgument& e) {
             throw InvalidArgument(where + e.what());
         }

@@ -29,27 +29,44 @@ class TRICELL_API InvalidArgument : public Error {
     using Error::Error;
 };
 
-/// A neighbour list larger than its pair limit (NeighborOptions::max_pairs, or a front end's own
-/// limit), refused before anything large is allocated (from the estimate) or as soon as the
-/// stored pairs pass it. It carries its fields so that every front end can name the limit in its
-/// own terms (the command line's --max-pairs, the C struct's field, Python's keyword): what()
-/// names NeighborOptions::max_pairs, message_for() any other name.
+/// A neighbour list larger than one of its limits: more pairs than NeighborOptions::max_pairs
+/// (or a front end's own pair limit), or more memory than NeighborOptions::max_bytes (which()
+/// tells them apart). Refused before anything large is allocated (from the estimate) or as soon
+/// as the stored pairs pass the limit. It carries its fields so that every front end can name
+/// the limit in its own terms (the command line's --max-pairs or --max-bytes, the C struct's
+/// field, Python's keyword): what() names the NeighborOptions field, message_for() any other
+/// name.
 class TRICELL_API PairLimitError : public InvalidArgument {
   public:
-    /// `subject` says what is too large, e.g. "cutoff 3 would give about 1.2e9 pairs for 1000
-    /// atoms (estimated from the density)"; `pairs` is that estimate, or for a list refused
-    /// while it was being stored the first count past the limit (limit + 1).
+    /// Which limit refused the list.
+    enum class Limit { pairs, bytes };
+    /// A refused pair limit. `subject` says what is too large, e.g. "cutoff 3 would give about
+    /// 1.2e9 pairs for 1000 atoms (estimated from the density)"; `pairs` is that estimate, or for
+    /// a list refused while it was being stored the first count past the limit (limit + 1).
     PairLimitError(std::string subject, double pairs, std::size_t limit);
+    /// A refused memory limit: `subject` names the pairs and their `bytes` (the list's memory at
+    /// its peak, docs/memory.md), `max_bytes` the limit.
+    PairLimitError(std::string subject, double pairs, double bytes, std::size_t max_bytes);
     const std::string& subject() const noexcept { return subject_; }
+    Limit which() const noexcept { return which_; }
     double pairs() const noexcept { return pairs_; }
+    /// The list's memory at its peak (a memory limit; 0 for a pair limit).
+    double bytes() const noexcept { return bytes_; }
+    /// The limit: pairs or bytes, as which() says.
     std::size_t limit() const noexcept { return limit_; }
+    /// The limit's value in words: "500000000" (pairs) or "17179869184 (16 GiB)" (bytes).
+    std::string limit_text() const;
     /// "SUBJECT, more than LIMIT_TEXT; raise RAISE to allow it", e.g. message_for("--max-pairs
-    /// 100", "--max-pairs").
+    /// 100", "--max-pairs"); a memory limit adds " (0 = no limit)".
     std::string message_for(const std::string& limit_text, const std::string& raise) const;
+    /// The same error about `subject` instead (a caller that says where the list came from).
+    PairLimitError with_subject(std::string subject) const;
 
   private:
     std::string subject_;
+    Limit which_;
     double pairs_;
+    double bytes_;
     std::size_t limit_;
 };
 

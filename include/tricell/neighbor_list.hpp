@@ -71,6 +71,10 @@ struct SpeciesCutoff {
     double cutoff = 0; ///< pairs of these species count when d < cutoff; finite and > 0
 };
 
+/// Three quarters of the machine's physical memory in bytes (sysconf), the default of
+/// NeighborOptions::max_bytes; 0 (no limit) where the system does not say.
+TRICELL_API std::size_t default_max_bytes();
+
 struct TRICELL_API NeighborOptions {
     /// Pairs with |D| < cutoff (strict) are reported. Finite and > 0, unless radii or
     /// species_cutoffs decide instead (then it must stay 0).
@@ -107,6 +111,13 @@ struct TRICELL_API NeighborOptions {
     /// 0 means no limit. The default, 5e8 pairs, is about 14 GB of i, j, S, d
     /// (26 GB with D).
     std::size_t max_pairs = 500'000'000;
+    /// Refuse (InvalidArgument) when the stored list would need more than this many bytes at its
+    /// peak: the pairs times the bytes per pair of the stored columns, plus the working space of
+    /// grouping or sorting (docs/memory.md), checked against the estimated pairs before anything
+    /// proportional to them is allocated, and again while the list is written (a list that
+    /// outgrows its estimate is refused before a growing column would pass the limit). 0 means
+    /// no limit. The default, default_max_bytes(), is three quarters of the physical memory.
+    std::size_t max_bytes = default_max_bytes();
     /// Cap on the dense and linked grids' cells; 0 means 4 N + 64. Memory follows atoms, not
     /// volume. (The hash and octree backends need no cap: their memory is O(N) anyway.)
     std::size_t max_cells = 0;

@@ -77,7 +77,7 @@ TRICELL_API double rounding_allowance(const Box& box, const Eigen::Vector3d& xi,
 
 /// Checks plain arrays against the reference for (box, positions, options); options.cutoff, or
 /// radii or species with species_cutoffs, options.half and options.query say which list is expected
-/// (options.threads and options.max_pairs bound the reference search; the other fields do not
+/// (options.threads, max_pairs and max_bytes bound the reference search; the other fields do not
 /// matter).
 TRICELL_API VerifyReport verify(const Box& box, PointsView positions,
                                 const NeighborOptions& options, const PairArrays& list);

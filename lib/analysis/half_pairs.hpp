@@ -7,7 +7,7 @@
 // that stores i, j, S and d, 24 bytes per pair. Either way the visitor sees the same set of
 // (i, j, S, d), so a result that only sums over pairs (a histogram, a bounded heap with a total
 // order) does not depend on the number of threads. No pair limit applies (max_pairs = 0): the
-// caller asked for every pair within its radius.
+// caller asked for every pair within its radius (nor does max_bytes).
 #pragma once
 
 #include <cmath>
@@ -18,8 +18,8 @@
 namespace tricell::detail {
 
 /// Calls visit(i, j, s, d) (s: three ints, S relative to the positions as given; d = |D|) once
-/// for every pair of the half list of `options` (whose half, max_pairs and quantities are set
-/// here; cutoff, backend and threads are the caller's).
+/// for every pair of the half list of `options` (whose half, max_pairs, max_bytes and quantities
+/// are set here; cutoff, backend and threads are the caller's).
 template <class Visit>
 void for_each_half_pair(const Box& box, PointsView positions, NeighborOptions options,
                         Visit&& visit) {
@@ -27,6 +27,7 @@ void for_each_half_pair(const Box& box, PointsView positions, NeighborOptions op
     options.sorted = false;
     options.grouped = false;
     options.max_pairs = 0;
+    options.max_bytes = 0;
     options.quantities = Quantities{true, true, false};
     NeighborSearch search;
     search.build(box, positions, options);

@@ -99,6 +99,7 @@ NearestNeighbors nearest_neighbors(const Box& box, PointsView positions, std::si
     search.threads = options.threads;
     search.backend = options.backend;
     search.max_pairs = 0; // nothing is stored but the heaps
+    search.max_bytes = 0;
     search.cutoff = initial_radius(box, positions, k, search);
     while (true) {
         detail::for_each_half_pair(

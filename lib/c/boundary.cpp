@@ -24,14 +24,16 @@ void set_message(const char* text) noexcept {
 }
 
 namespace {
-// A refused pair limit in C terms: the field a C caller raises (tricell_verlet_options has it
-// too, in its member neighbors). Composing the text allocates; should that fail, the C++ text
-// is recorded instead.
+// A refused pair or memory limit in C terms: the field a C caller raises
+// (tricell_verlet_options has them too, in its member neighbors). Composing the text
+// allocates; should that fail, the C++ text is recorded instead.
 void set_pair_limit_message(const PairLimitError& e) noexcept {
     try {
-        set_message(e.message_for("max_pairs = " + std::to_string(e.limit()),
-                                  "tricell_neighbor_options.max_pairs")
-                        .c_str());
+        const std::string field =
+            e.which() == PairLimitError::Limit::bytes ? "max_bytes" : "max_pairs";
+        set_message(
+            e.message_for(field + " = " + e.limit_text(), "tricell_neighbor_options." + field)
+                .c_str());
     } catch (...) {
         set_message(e.what());
     }

@@ -6,8 +6,9 @@
 // (NULL pointers, flags that must be 0 or 1) throw tricell::InvalidArgument like the C++ API's
 // own checks, so every message, whichever side found the problem, reaches the caller the same
 // way. Everything else (cutoffs, positions, boxes) is left to the C++ validation, whose text
-// is passed through unchanged, except that a refused pair limit (tricell::PairLimitError) names
-// the C field to raise, tricell_neighbor_options.max_pairs.
+// is passed through unchanged, except that a refused pair or memory limit
+// (tricell::PairLimitError) names the C field to raise, tricell_neighbor_options.max_pairs or
+// max_bytes.
 #pragma once
 
 #include "tricell.h"

@@ -58,6 +58,7 @@ void to_options(const tricell_neighbor_options& options, std::size_t atoms, Neig
     // Any int fits SearchBackend's underlying type; NeighborOptions::validate() names a bad one.
     out.backend = static_cast<SearchBackend>(options.backend);
     out.max_pairs = options.max_pairs;
+    out.max_bytes = options.max_bytes;
     // Past the C++ limit on atoms nothing is copied: the search refuses the count itself.
     const bool copy = atoms < std::size_t(std::numeric_limits<std::int32_t>::max());
     if (options.radii != nullptr && copy) {
@@ -104,6 +105,7 @@ tricell_neighbor_options to_c_options(const NeighborOptions& options) {
     out.threads = options.threads;
     out.backend = static_cast<int>(options.backend);
     out.max_pairs = options.max_pairs;
+    out.max_bytes = options.max_bytes;
     out.radii = nullptr;
     out.species = nullptr;
     out.species_cutoffs = nullptr;

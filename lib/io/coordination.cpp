@@ -98,6 +98,7 @@ std::vector<Coordination> coordination(const Structure& structure,
     neighbor_options.quantities.distances = true;
     neighbor_options.quantities.vectors = false;
     neighbor_options.max_pairs = options.max_pairs;
+    neighbor_options.max_bytes = options.max_bytes;
     const NeighborList list =
         compute_neighbors(structure.box, structure.positions, neighbor_options);
     std::vector<double> sum(n, 0.0);

@@ -38,10 +38,11 @@ namespace tricell::detail {
 class OrderedOutput {
   public:
     /// Fills `columns` (resized to `capacity` now, trimmed by finish()) with `batches` batches;
-    /// at most `limit` pairs in all (0: no limit).
+    /// at most what `limits` allow in all (they must outlive the output).
     OrderedOutput(const SinkColumns& columns, std::size_t batches, std::size_t capacity,
-                  std::size_t limit)
-        : columns_(columns), limit_(limit), size_(batches, unknown), offset_(batches, 0) {
+                  const ListLimits& limits)
+        : columns_(columns), limits_(limits), limit_(limits.pairs()), size_(batches, unknown),
+          offset_(batches, 0) {
         resize(limit_ != 0 ? std::min(capacity, limit_) : capacity);
     }
 
@@ -55,7 +56,7 @@ class OrderedOutput {
         while (placed < size_.size() && size_[placed] != unknown) {
             if (limit_ != 0 && size_[placed] > limit_ - end_) {
                 abort();
-                fail_list_over_limit(limit_);
+                limits_.fail_size(end_ + size_[placed]);
             }
             offset_[placed] = end_;
             end_ += size_[placed];
@@ -93,6 +94,7 @@ class OrderedOutput {
         }
         std::unique_lock<std::shared_mutex> lock(grow_mutex_);
         if (offset + size > capacity_) {
+            limits_.check_growth(capacity_);
             resize(std::max(offset + size, 2 * capacity_));
         }
         copy(offset, from, start, size);
@@ -141,6 +143,7 @@ class OrderedOutput {
     }
 
     SinkColumns columns_;
+    const ListLimits& limits_;
     std::size_t limit_ = 0;
     std::size_t capacity_ = 0; // guarded by grow_mutex_
     std::shared_mutex grow_mutex_;
@@ -157,14 +160,15 @@ class OrderedOutput {
 /// Fills `final_columns` with the batches of `plan` on `threads` threads, in batch order (see
 /// above): scan(b, sink) scans batch b into a PairSink. `columns_of` picks the stored columns of
 /// a thread's own PairColumns; `scratch` holds those (kept between calls, one per thread).
-/// `capacity` is the room to start with, `limit` the pair limit (0: none). Rethrows the first
+/// `capacity` is the room to start with, `limits` those of the list. Rethrows the first
 /// error of any thread after all have stopped.
 template <class ColumnsOf, class Scan>
 void ordered_search(const SinkColumns& final_columns, const BatchPlan& plan, std::size_t capacity,
-                    std::size_t limit, std::size_t threads, std::vector<PairColumns>& scratch,
-                    const ColumnsOf& columns_of, const Scan& scan) {
+                    const ListLimits& limits, std::size_t threads,
+                    std::vector<PairColumns>& scratch, const ColumnsOf& columns_of,
+                    const Scan& scan) {
     const std::size_t batches = plan.size();
-    OrderedOutput output(final_columns, batches, capacity, limit);
+    OrderedOutput output(final_columns, batches, capacity, limits);
     scratch.resize(threads);
     std::vector<std::exception_ptr> errors(threads);
     std::atomic<std::size_t> next{0};
@@ -203,7 +207,7 @@ void ordered_search(const SinkColumns& final_columns, const BatchPlan& plan, std
                 if (b >= batches || output.aborted()) {
                     break;
                 }
-                PairSink sink(columns, limit, plan.reserve[b], used);
+                PairSink sink(columns, limits, plan.reserve[b], used);
                 scan(b, sink);
                 pending.push_back(Pending{b, used, sink.size() - used});
                 used = sink.size();

@@ -62,7 +62,13 @@ void group_pairs(PairColumns& columns, std::size_t atoms, PairColumns& spare) {
     // The search meets each atom's pairs in runs (a cell's atoms against one stencil row at a
     // time), several pairs long: the runs move whole, and i is written from the offsets.
     const PairArray<std::uint32_t>& is = columns.i;
+    // Counted first, so that the runs take 8 bytes each and no growth copy (docs/memory.md).
+    std::size_t run_count = 0;
+    for (std::size_t k = 0; k < is.size(); ++k) {
+        run_count += k == 0 || is[k] != is[k - 1] ? 1 : 0;
+    }
     std::vector<std::size_t> runs;
+    runs.reserve(run_count + 1);
     for (std::size_t k = 0; k < is.size(); ++k) {
         if (k == 0 || is[k] != is[k - 1]) {
             runs.push_back(k);

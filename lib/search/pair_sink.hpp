@@ -1,9 +1,10 @@
 // Where found pairs go: a PairSink appends them to struct-of-arrays columns through raw
 // pointers. In storing mode the columns belong to a NeighborList and grow geometrically (a
 // push_back per field would re-check capacity five times per pair), refusing to grow past
-// max_pairs. In block mode they are a fixed block of a few hundred pairs that is handed to a
-// visitor each time it fills (for_each_pair), with shifts already in the caller's frame. Either
-// way add() is the same few stores; only the rare "full" path differs.
+// max_pairs or, in bytes, max_bytes (list_limits.hpp). In block mode they are a fixed block of a
+// few hundred pairs that is handed to a visitor each time it fills (for_each_pair), with shifts
+// already in the caller's frame. Either way add() is the same few stores; only the rare "full" path
+// differs.
 #pragma once
 
 #include <algorithm>
@@ -14,16 +15,11 @@
 #include <Eigen/Core>
 
 #include "search/distance_kernel.hpp"
+#include "search/list_limits.hpp"
 #include "tricell/error.hpp"
 #include "tricell/neighbor_list.hpp"
 
 namespace tricell::detail {
-
-/// The refusal of a stored list that outgrew NeighborOptions::max_pairs (the sink here and the
-/// threads' ordered output both throw it).
-[[noreturn]] inline void fail_list_over_limit(std::size_t limit) {
-    throw PairLimitError("the neighbour list has too many pairs", double(limit) + 1, limit);
-}
 
 /// The columns of a PairColumns that a storing sink fills (null: not stored).
 struct SinkColumns {
@@ -47,11 +43,12 @@ class PairSink {
     static constexpr std::size_t block_size = kernel_group * kernel_block;
 
     /// Storing mode: appends to `columns` after their first `start` pairs (kept), starting with
-    /// room for `initial` more, never more than `limit` pairs in all (0: no limit).
-    PairSink(const SinkColumns& columns, std::size_t limit, std::size_t initial,
+    /// room for `initial` more, never more than `limits` allow (they must outlive the sink).
+    PairSink(const SinkColumns& columns, const ListLimits& limits, std::size_t initial,
              std::size_t start = 0)
-        : columns_(columns), size_(start), limit_(limit) {
-        resize(limit_ != 0 ? std::min(start + initial, std::max(start, limit_)) : start + initial);
+        : columns_(columns), size_(start), limit_(limits.pairs()), limits_(&limits) {
+        resize(limit_ != 0 ? std::min(start + initial, std::max(start, limit_) + block_size)
+                           : start + initial);
     }
 
     /// Block mode: every block_size pairs (and at finish()) calls on_block(context, block),
@@ -124,11 +121,11 @@ class PairSink {
         }
     }
 
-    /// Keeps the first `count` claimed pairs; a stored list refuses to pass max_pairs here.
+    /// Keeps the first `count` claimed pairs; a stored list refuses to pass its limits here.
     void commit(std::size_t count) {
         size_ += count;
         if (limit_ != 0 && size_ > limit_) {
-            fail_list_over_limit(limit_);
+            limits_->fail_size(size_);
         }
     }
 
@@ -159,10 +156,13 @@ class PairSink {
             flush();
             return;
         }
-        // Past max_pairs only by the claim at hand (commit() refuses when it is used).
+        // The copy of a growing column must fit max_bytes. The columns hold room for one claim
+        // past the pair limit (commit() refuses when it is used), so a list that reaches the
+        // limit is refused there, not by a growth it does not need.
+        limits_->check_growth(capacity_);
         std::size_t next = std::max({std::size_t(1024), capacity_ * 2, size_ + count});
         if (limit_ != 0) {
-            next = std::max(std::min(next, limit_), size_ + count);
+            next = std::max(std::min(next, limit_ + block_size), size_ + count);
         }
         resize(next);
     }
@@ -209,6 +209,7 @@ class PairSink {
     double* pd_ = nullptr;
     double* pv_ = nullptr;
     std::size_t capacity_ = 0, limit_ = 0;
+    const ListLimits* limits_ = nullptr;
 
     // Block mode.
     void (*on_block_)(void*, const PairBlock&) = nullptr;

@@ -2,8 +2,9 @@
 //
 //   build:   options.cpp  validate the options and positions
 //            frame.cpp    choose the search frame and wrap the positions into it
-//            policy.cpp   estimate the pairs (refused past max_pairs before anything large is
-//                         allocated), choose the backend and the threads
+//            policy.cpp   estimate the pairs, choose the backend and the threads
+//            list_limits.cpp  refuse an estimate past max_pairs or max_bytes (before anything
+//                         large is allocated)
 //            backends/    bin the atoms;  frame.cpp  store them in the backend's order
 //   compute: a backend names candidates, candidate_scan.hpp tests them, pair_sink.hpp stores the
 //            hits; on several threads ordered_output.hpp keeps them in unit order; frame.cpp maps
@@ -19,6 +20,7 @@
 #include "cost_model/cost_model.hpp"
 #include "detail/parallel.hpp"
 #include "search/frame.hpp"
+#include "search/list_limits.hpp"
 #include "search/options.hpp"
 #include "search/ordered_output.hpp"
 #include "search/output_order.hpp"
@@ -88,11 +90,10 @@ void NeighborSearch::build(const Box& caller_box, PointsView positions,
     s.estimated_pairs =
         detail::estimated_system_pairs(box, n, wrapped.lower, wrapped.upper, cutoff, binning.half) *
         (double(query_size) / double(n));
-    if (options.max_pairs != 0 && s.estimated_pairs > double(options.max_pairs)) {
-        throw PairLimitError(detail::cat("cutoff ", cutoff, " would give about ", s.estimated_pairs,
-                                         " pairs for ", n, " atoms (estimated from the density)"),
-                             s.estimated_pairs, options.max_pairs);
-    }
+    detail::ListLimits(options, n)
+        .check_estimate(s.estimated_pairs,
+                        detail::cat("cutoff ", cutoff, " would give about ", s.estimated_pairs,
+                                    " pairs for ", n, " atoms (estimated from the density)"));
 
     const SearchBackend kind =
         options.backend == SearchBackend::automatic
@@ -151,9 +152,10 @@ void NeighborSearch::compute(NeighborList& out) const {
                 expected_pairs(occupancy.atoms[u], occupancy.volume[u] * box_volume, sphere);
             total += expected[u];
         }
+        const detail::ListLimits limits(s.options, s.atom_count);
         if (threads == 1) {
-            detail::PairSink sink(columns_of(columns), s.options.max_pairs,
-                                  detail::pair_room(total, s.options.max_pairs));
+            detail::PairSink sink(columns_of(columns), limits,
+                                  detail::pair_room(total, limits.pairs()));
             detail::CandidateScanner scan = s.scanner(sink);
             s.backend->visit(0, units, scan);
             sink.finish();
@@ -165,8 +167,8 @@ void NeighborSearch::compute(NeighborList& out) const {
             const detail::BatchPlan plan = detail::plan_batches(work, expected, threads);
             detail::ordered_search(
                 columns_of(columns), plan,
-                std::max(detail::pair_room(total, s.options.max_pairs), columns.i.capacity()),
-                s.options.max_pairs, threads, out.thread_columns(), columns_of,
+                std::max(detail::pair_room(total, limits.pairs()), columns.i.capacity()), limits,
+                threads, out.thread_columns(), columns_of,
                 [&](std::size_t b, detail::PairSink& sink) {
                     detail::CandidateScanner scan = s.scanner(sink);
                     s.backend->visit(plan.bounds[b], plan.bounds[b + 1], scan);

@@ -143,6 +143,7 @@ ReferencePairs reference_pairs(const Box& box, PointsView positions, const Neigh
         search_options.half = options.half;
         search_options.threads = options.threads;
         search_options.max_pairs = options.max_pairs;
+        search_options.max_bytes = options.max_bytes;
         search_options.quantities = Quantities{true, false, false};
         NeighborSearch search;
         search.build(box, positions, search_options);

@@ -97,6 +97,10 @@ py::array checked_array(const py::handle& value, const std::string& name, const 
 /// elsewhere). ValueError for anything else.
 void set_cutoff(const py::object& cutoff, NeighborOptions& options);
 
+/// The max_bytes argument: None is the library's default (NeighborOptions().max_bytes), else a
+/// whole number >= 0 (0: no limit). ValueError naming max_bytes for anything else.
+std::size_t max_bytes_argument(const py::object& value);
+
 /// Which NeighborList columns a quantities string needs; throws ValueError for other letters.
 Quantities parse_quantities(const std::string& letters);
 

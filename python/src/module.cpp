@@ -1,7 +1,8 @@
 // The native module tricell._tricell: registers the bindings and translates tricell's
 // exceptions. A malformed or unreadable file (tricell::ParseError) becomes OSError, any other
 // bad value (InvalidArgument, GeometryError) ValueError, each with the C++ message unchanged,
-// except that a refused pair limit (PairLimitError) names the keyword argument max_pairs.
+// except that a refused pair or memory limit (PairLimitError) names the keyword argument
+// max_pairs or max_bytes.
 #include <string>
 #include <vector>
 
@@ -36,9 +37,10 @@ PYBIND11_MODULE(_tricell, m) {
         } catch (const tricell::ParseError& e) {
             PyErr_SetString(PyExc_OSError, e.what());
         } catch (const tricell::PairLimitError& e) {
-            // The limit as a Python caller sets it: the keyword argument max_pairs.
-            const std::string text =
-                e.message_for("max_pairs = " + std::to_string(e.limit()), "max_pairs");
+            // The limit as a Python caller sets it: the keyword argument max_pairs or max_bytes.
+            const std::string keyword =
+                e.which() == tricell::PairLimitError::Limit::bytes ? "max_bytes" : "max_pairs";
+            const std::string text = e.message_for(keyword + " = " + e.limit_text(), keyword);
             PyErr_SetString(PyExc_ValueError, text.c_str());
         } catch (const tricell::Error& e) {
             PyErr_SetString(PyExc_ValueError, e.what());

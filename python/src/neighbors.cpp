@@ -78,6 +78,22 @@ void set_cutoff(const py::object& cutoff, NeighborOptions& options) {
     }
 }
 
+std::size_t max_bytes_argument(const py::object& value) {
+    if (value.is_none()) {
+        return NeighborOptions().max_bytes;
+    }
+    if (py::isinstance<py::int_>(value) && !py::isinstance<py::bool_>(value)) {
+        try {
+            return value.cast<std::size_t>();
+        } catch (const py::cast_error&) {
+            // negative or past 2^64: refused below
+        }
+    }
+    throw py::value_error("max_bytes must be a whole number of bytes >= 0 (0: no limit) or None "
+                          "(three quarters of the physical memory), got " +
+                          described(value));
+}
+
 namespace {
 
 class PyNeighborList {
@@ -85,7 +101,8 @@ class PyNeighborList {
     // cutoff: a float (one cutoff), a dict {(species a, species b): cutoff} (a per-species-pair
     // table; compute() then needs species=) or None (compute() then needs radii=).
     PyNeighborList(const py::object& cutoff, bool full, bool sorted, int threads,
-                   const std::string& backend, std::size_t max_pairs, bool grouped) {
+                   const std::string& backend, std::size_t max_pairs, bool grouped,
+                   const py::object& max_bytes) {
         set_cutoff(cutoff, options_);
         per_atom_radii_ = cutoff.is_none();
         options_.half = !full;
@@ -94,6 +111,7 @@ class PyNeighborList {
         options_.threads = threads;
         options_.backend = parse_backend(backend);
         options_.max_pairs = max_pairs;
+        options_.max_bytes = max_bytes_argument(max_bytes);
         if (!per_atom_radii_) {
             options_.validate();
         }
@@ -255,9 +273,11 @@ class PyNeighborList {
 
 class PyVerletList {
   public:
-    PyVerletList(double cutoff, double skin, bool full, int threads, std::size_t max_pairs) {
+    PyVerletList(double cutoff, double skin, bool full, int threads, std::size_t max_pairs,
+                 const py::object& max_bytes) {
         options_.neighbors.cutoff = cutoff;
         options_.neighbors.max_pairs = max_pairs;
+        options_.neighbors.max_bytes = max_bytes_argument(max_bytes);
         options_.skin = skin;
         options_.neighbors.half = !full;
         options_.neighbors.threads = threads;
@@ -310,7 +330,8 @@ void bind_neighbors(py::module_& m) {
 Periodic neighbour list in a triclinic box.
 
 NeighborList(cutoff, full=True, sorted=False, threads=1, backend="auto", max_pairs=)doc" +
-                            std::to_string(default_max_pairs) + R"doc(, grouped=False)
+                            std::to_string(default_max_pairs) + R"doc(, grouped=False,
+             max_bytes=None)
 
 Pairs (i, j, S) with |D| < cutoff, D = points[j] - points[i] + S @ box, except (i, i, 0).
 cutoff may also be a dict {(a, b): cutoff} of integer species pairs (symmetric; a pair of
@@ -323,16 +344,21 @@ both give per-atom offsets (quantity 'o'). threads=0 uses every core; the result
 identical for any thread count. backend ()doc" +
                             quoted_backends() + R"doc() changes only the speed.
 max_pairs refuses a list of more pairs (a batch: in total) before it is allocated, from an
-estimate, or as soon as the stored pairs pass it; 0 = no limit.
+estimate, or as soon as the stored pairs pass it; 0 = no limit. max_bytes does the same for
+the list's memory at its peak: the pairs times the bytes of the quantities stored, plus the
+working space of grouping or sorting (None: three quarters of this machine's physical memory;
+0 = no limit).
 Array arguments take any array-like of real numbers (floats or integers, any byte order, memory
 order or strides; species integers, periodic bools or 0 and 1): another kind of value (bool,
 complex, str, object, datetime, ...) raises TypeError, a wrong shape ValueError, each naming the
 argument with the dtype and shape it got.)doc";
     py::class_<PyNeighborList>(m, "NeighborList", doc.c_str())
-        .def(py::init<const py::object&, bool, bool, int, const std::string&, std::size_t, bool>(),
+        .def(py::init<const py::object&, bool, bool, int, const std::string&, std::size_t, bool,
+                      const py::object&>(),
              py::arg("cutoff"), py::arg("full") = true, py::arg("sorted") = false,
              py::arg("threads") = 1, py::arg("backend") = "auto",
-             py::arg("max_pairs") = default_max_pairs, py::arg("grouped") = false)
+             py::arg("max_pairs") = default_max_pairs, py::arg("grouped") = false,
+             py::arg("max_bytes") = py::none())
         .def("compute", &PyNeighborList::compute, py::arg("points"), py::arg("box"),
              py::arg("periodic") = true, py::arg("quantities") = "ijSd", py::arg("copy") = true,
              py::arg("radii") = py::none(), py::arg("species") = py::none(),
@@ -376,12 +402,14 @@ fractional frame, so wrapping or a whole lattice vector never counts), or when t
 or periodicity changes.
 
 VerletList(cutoff, skin, full=True, threads=1, max_pairs=)doc" +
-                                   std::to_string(verlet_max_pairs) + R"doc(); max_pairs bounds
-the candidates within cutoff + skin as NeighborList's bounds its pairs (0 = no limit).)doc";
+                                   std::to_string(verlet_max_pairs) +
+                                   R"doc(, max_bytes=None); max_pairs and
+max_bytes bound the candidates within cutoff + skin as NeighborList's bound its pairs (0 = no
+limit).)doc";
     py::class_<PyVerletList>(m, "VerletList", verlet_doc.c_str())
-        .def(py::init<double, double, bool, int, std::size_t>(), py::arg("cutoff"), py::arg("skin"),
-             py::arg("full") = true, py::arg("threads") = 1,
-             py::arg("max_pairs") = verlet_max_pairs)
+        .def(py::init<double, double, bool, int, std::size_t, const py::object&>(),
+             py::arg("cutoff"), py::arg("skin"), py::arg("full") = true, py::arg("threads") = 1,
+             py::arg("max_pairs") = verlet_max_pairs, py::arg("max_bytes") = py::none())
         .def("update", &PyVerletList::update, py::arg("points"), py::arg("box"),
              py::arg("periodic") = true, py::arg("quantities") = "ijSd",
              R"doc(

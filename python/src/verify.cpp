@@ -23,7 +23,7 @@ VerifyReport verify_arrays(const py::handle& points, const py::handle& box, cons
                            const py::handle& distances, const py::handle& vectors,
                            const py::object& cutoff, const py::handle& radii,
                            const py::handle& species, bool half, const py::handle& periodic,
-                           int threads, std::size_t max_pairs) {
+                           int threads, std::size_t max_pairs, const py::object& max_bytes) {
     const DoubleArray x = points_array(points);
     const Box search_box = box_from_rows(box, periodic);
     const auto n = static_cast<std::size_t>(x.shape(0));
@@ -49,6 +49,7 @@ VerifyReport verify_arrays(const py::handle& points, const py::handle& box, cons
     options.half = half;
     options.threads = threads;
     options.max_pairs = max_pairs;
+    options.max_bytes = max_bytes_argument(max_bytes);
 
     const std::vector<std::int64_t> first = index_array(i, "i", -1, 1, nullptr);
     const auto rows = static_cast<py::ssize_t>(first.size());
@@ -114,6 +115,7 @@ void bind_verify(py::module_& m) {
           py::kw_only(), py::arg("cutoff") = py::none(), py::arg("radii") = py::none(),
           py::arg("species") = py::none(), py::arg("half") = false, py::arg("periodic") = true,
           py::arg("threads") = 1, py::arg("max_pairs") = NeighborOptions().max_pairs,
+          py::arg("max_bytes") = py::none(),
           "Checks the neighbour list (i, j, S) of points in box (lattice vectors as rows; "
           "periodic: one bool or three), from any code (ASE's neighbor_list(\"ijSdD\", ...) "
           "arrays, for instance), against an independent search: brute force while N^2 times "

@@ -2,6 +2,7 @@
 in the same process: values, dtypes, letters, array-like inputs, copy=False views, half lists,
 threads and errors."""
 import gc
+import re
 import threading
 
 import numpy as np
@@ -268,6 +269,48 @@ def test_a_refused_pair_limit_names_the_keyword_max_pairs():
         assert len(found) == pairs
     found = tricell.VerletList(cutoff, 0.5, max_pairs=0).update(positions, cell, pbc, "i")
     assert len(found) == pairs
+
+
+def test_a_refused_memory_limit_names_the_keyword_max_bytes():
+    # 30 atoms within 1.5 A of each other in a 10 A cube: every pair counts (870), well above
+    # the density's estimate (about 100), so the list itself decides.
+    cell, pbc, cutoff = 10 * np.eye(3), True, 3.0
+    positions = np.random.default_rng(3).uniform(0, 1.5, (30, 3))
+    pairs = len(tricell.NeighborList(cutoff).compute(positions, cell, pbc, "i"))
+    assert pairs == 30 * 29
+    fits = 32 * pairs
+    # i, j, S, d: 32 bytes a pair; one byte short of the list is refused, with the pairs, their
+    # bytes and the limit in the keyword's name.
+    tail = ", more than max_bytes = %d (" % (fits - 1)
+    raise_it = " GiB); raise max_bytes to allow it (0 = no limit)"
+    for make in (lambda: tricell.NeighborList(cutoff, max_bytes=fits - 1),
+                 lambda: tricell.NeighborList(cutoff, True, False, 1, "auto", 0, False, fits - 1)):
+        with pytest.raises(ValueError) as refused:
+            make().compute(positions, cell, pbc)
+        text = str(refused.value)
+        assert text.startswith("the neighbour list has too many pairs: 870 pairs are 27840 "
+                               "bytes at their peak (32 bytes a pair of i, j, S, d)"), text
+        assert tail in text and text.endswith(raise_it), text
+        assert "NeighborOptions" not in text, text
+    with pytest.raises(ValueError) as refused:
+        tricell.NeighborList(cutoff, max_bytes=10).compute_batch([positions], [cell], pbc)
+    assert str(refused.value).endswith(raise_it), str(refused.value)
+    with pytest.raises(ValueError) as refused:
+        tricell.VerletList(cutoff, 0.5, max_bytes=10).update(positions, cell, pbc)
+    assert "more than max_bytes = 10 (" in str(refused.value), str(refused.value)
+    # Exactly the list's bytes, or 0 (no limit), or None (the default), let it through.
+    for limit in (fits, 0, None):
+        found = tricell.NeighborList(cutoff, max_bytes=limit).compute(positions, cell, pbc, "i")
+        assert len(found) == pairs
+    found = tricell.VerletList(cutoff, 0.5, max_bytes=0).update(positions, cell, pbc, "i")
+    assert len(found) == pairs
+    i, j, S, d = tricell.NeighborList(cutoff).compute(positions, cell, pbc, "ijSd")
+    assert tricell.verify(positions, cell, i, j, S, d, cutoff=cutoff, periodic=pbc, max_bytes=0)
+    # Anything but a whole number >= 0 or None is refused, naming max_bytes and the value.
+    for bad in (-1, 1.5, "16G", True, 2 ** 70):
+        with pytest.raises(ValueError, match=r"^max_bytes must be a whole number of bytes >= 0 "
+                                             r"\(0: no limit\) or None .*, got " + re.escape(repr(bad))):
+            tricell.NeighborList(cutoff, max_bytes=bad)
 
 
 @pytest.mark.parametrize("seed", range(16))

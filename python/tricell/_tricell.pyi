@@ -23,6 +23,7 @@ class NeighborList:
         backend: str = "auto",
         max_pairs: int = 500000000,
         grouped: bool = False,
+        max_bytes: Optional[int] = None,
     ) -> None: ...
     def compute(
         self,
@@ -59,6 +60,7 @@ class VerletList:
         full: bool = True,
         threads: int = 1,
         max_pairs: int = 500000000,
+        max_bytes: Optional[int] = None,
     ) -> None: ...
     def update(
         self,
@@ -162,6 +164,7 @@ def verify(
     periodic: Periodic = True,
     threads: int = 1,
     max_pairs: int = 500000000,
+    max_bytes: Optional[int] = None,
 ) -> VerifyReport: ...
 def _read(path: str, format: str = "") -> tuple: ...
 def _as_array(value: ArrayLike, name: str, rule: str) -> np.ndarray: ...

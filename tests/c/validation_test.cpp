@@ -284,6 +284,28 @@ TEST(CApiValidation, Neighbors_EveryArgumentLeavesTheListEmpty) {
             subject +
                 ", more than max_pairs = 1; raise tricell_neighbor_options.max_pairs to allow it");
     }
+    // So does a refused memory limit, with the limit in bytes and GiB; 0 lifts it.
+    {
+        tricell_neighbor_options o = options_with_cutoff(3.9);
+        EXPECT_EQ(o.max_bytes, tricell::default_max_bytes());
+        o.max_bytes = 1000;
+        const std::vector<Eigen::Vector3d> many(50, Eigen::Vector3d(1, 1, 1));
+        tricell::NeighborOptions c;
+        c.cutoff = 3.9;
+        c.max_bytes = 1000;
+        std::string subject;
+        try {
+            tricell::compute_neighbors(cxx_box, many, c);
+        } catch (const tricell::PairLimitError& e) {
+            subject = e.subject();
+        }
+        ASSERT_NE(subject.find(" bytes at its peak ("), std::string::npos) << subject;
+        check(call_with(o, xyz(many), many.size()), TRICELL_ERROR_INVALID_ARGUMENT,
+              subject + ", more than max_bytes = 1000 (9.31e-07 GiB); raise "
+                        "tricell_neighbor_options.max_bytes to allow it (0 = no limit)");
+        o.max_bytes = 0;
+        EXPECT_EQ(call_with(o, xyz(many), many.size())(), TRICELL_OK) << tricell_last_error();
+    }
     // Backend and variable cutoffs. Every backend of the library's table is a valid int.
     for (const tricell::SearchBackend backend : tricell::search_backends()) {
         tricell_neighbor_options o = good;

@@ -540,6 +540,39 @@ TEST_F(Cli, UsageErrorsExit2AndValueErrorsExit1) {
     }
 }
 
+// A memory limit refuses the search before it runs, in the command's words: the message names
+// the bytes and --max-bytes (not the library's NeighborOptions::max_bytes); 0 lifts it, and a
+// suffix counts powers of 1024.
+TEST_F(Cli, MaxBytesRefusesLargerSearchesWithStatus1) {
+    for (const std::string command :
+         {"neighbors quartz.cif --cutoff 3", "neighbors quartz.cif --cutoff 3 --sorted",
+          "coordination quartz.cif --cutoff 3", "bench quartz.cif --cutoff 3 --repeat 1"}) {
+        SCOPED_TRACE(command);
+        const Result refused = run(command + " --max-bytes 100");
+        EXPECT_EQ(refused.status, 1);
+        EXPECT_EQ(refused.out, "");
+        EXPECT_EQ(refused.err.find("tricell: cutoff 3 would give about "), 0u) << refused.err;
+        EXPECT_NE(refused.err.find(" bytes at its peak ("), std::string::npos) << refused.err;
+        EXPECT_NE(refused.err.find(", more than --max-bytes 100 (9.31e-08 GiB); raise "
+                                   "--max-bytes to allow it (0 = no limit)\n"),
+                  std::string::npos)
+            << refused.err;
+        EXPECT_EQ(refused.err.find("max_bytes"), std::string::npos) << refused.err;
+        EXPECT_EQ(std::count(refused.err.begin(), refused.err.end(), '\n'), 1);
+        EXPECT_EQ(run(command + " --max-bytes 0").status, 0);
+        EXPECT_EQ(run(command + " --max-bytes 1M").status, 0);
+    }
+    for (const std::string value : {"-1", "1.5", "12X", "1e30", "G", ""}) {
+        SCOPED_TRACE(value);
+        const Result bad = run("neighbors quartz.cif --cutoff 3 --max-bytes '" + value + "'");
+        EXPECT_EQ(bad.status, 2);
+        EXPECT_EQ(bad.err, "tricell: neighbors: --max-bytes must be a whole number of bytes in "
+                           "[0, 2^63], or a size with K, M, G or T (powers of 1024) such as 16G, "
+                           "got '" +
+                               value + "' (see tricell neighbors --help)\n");
+    }
+}
+
 // A pair limit refuses the search before it runs, in the command's words: the message names
 // --max-pairs (not the library's NeighborOptions::max_pairs); 0 lifts it.
 TEST_F(Cli, MaxPairsRefusesLargerSearchesWithStatus1) {

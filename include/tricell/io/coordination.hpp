@@ -34,6 +34,8 @@ struct TRICELL_IO_API CoordinationOptions {
     /// Refuse (InvalidArgument, before the search allocates) when the neighbour list of the
     /// largest cutoff would hold more pairs than this; 0 means no limit (NeighborOptions).
     std::size_t max_pairs = NeighborOptions().max_pairs;
+    /// Refuse the same way a list whose memory would pass this many bytes (NeighborOptions).
+    std::size_t max_bytes = NeighborOptions().max_bytes;
 
     /// Throws InvalidArgument: a cutoff not finite or < 0 (0 only for the default), an unknown
     /// element, a pair listed twice, or no cutoff at all.

@@ -1,0 +1,136 @@
+#include "search/list_limits.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#if __has_include(<unistd.h>)
+#include <unistd.h>
+#endif
+
+#include "tricell/error.hpp"
+
+namespace tricell {
+
+std::size_t default_max_bytes() {
+    // Three quarters of the physical memory, read once: the rest is the caller's arrays, the
+    // search's O(N) part and everything else running.
+    static const std::size_t bytes = [] {
+#if defined(_SC_PHYS_PAGES) && defined(_SC_PAGE_SIZE)
+        const long pages = sysconf(_SC_PHYS_PAGES);
+        const long page = sysconf(_SC_PAGE_SIZE);
+        if (pages > 0 && page > 0) {
+            return std::size_t(double(pages) * double(page) * 0.75);
+        }
+#endif
+        return std::size_t(0); // unknown: no limit
+    }();
+    return bytes;
+}
+
+namespace detail {
+
+namespace {
+
+// The most pairs p with p * per_pair + fixed <= limit (0 when none fit; the callers treat a
+// limit of 0 pairs as "at most 0", see below).
+std::size_t pairs_within(double limit, double fixed, double per_pair) {
+    const double p = std::floor((limit - fixed) / per_pair);
+    return p < 0 ? 0 : std::size_t(std::min(p, 0x1p62));
+}
+
+} // namespace
+
+double ListMemory::peak(double pairs, std::size_t atoms) const {
+    return pairs * (per_pair + order_per_pair) + double(atoms) * per_atom;
+}
+
+double ListMemory::growing(double pairs) const {
+    return pairs * (per_pair + widest);
+}
+
+std::string ListMemory::rates() const {
+    std::string text = cat(per_pair, " bytes a pair of ", columns);
+    if (order_per_pair > 0) {
+        text += cat(" + ", order_per_pair, " a pair to ",
+                    per_atom > 0 && order_per_pair > widest + 8 ? "sort" : "group", " them + ",
+                    per_atom, " an atom");
+    }
+    return text;
+}
+
+ListMemory list_memory(const NeighborOptions& options) {
+    const Quantities& q = options.quantities;
+    ListMemory m;
+    m.columns = "i, j";
+    m.per_pair = 8;
+    m.widest = 4;
+    const auto add = [&](bool stored, const char* name, double bytes) {
+        if (stored) {
+            m.columns += cat(", ", name);
+            m.per_pair += bytes;
+            m.widest = std::max(m.widest, bytes);
+        }
+    };
+    add(q.shifts || options.sorted, "S", 12);
+    add(q.distances, "d", 8);
+    add(q.vectors, "D", 24);
+    if (options.sorted) {
+        m.order_per_pair = 8 + m.widest; // the permutation, one column being permuted
+        m.per_atom = 16;
+    } else if (options.grouped) {
+        m.order_per_pair = m.widest + 8; // one column being scattered, the runs
+        m.per_atom = 16;
+    }
+    return m;
+}
+
+ListLimits::ListLimits(const NeighborOptions& options, std::size_t atoms)
+    : memory_(list_memory(options)), atoms_(atoms), max_pairs_(options.max_pairs),
+      max_bytes_(options.max_bytes), pairs_(options.max_pairs) {
+    if (max_bytes_ == 0) {
+        return;
+    }
+    // A limit of 0 pairs means "no limit" to the stores, so a list of which no pair fits is
+    // held to 1 pair (refused at its second).
+    const double fixed = double(atoms) * memory_.per_atom;
+    const std::size_t fit = std::max<std::size_t>(
+        1, pairs_within(double(max_bytes_), fixed, memory_.per_pair + memory_.order_per_pair));
+    pairs_ = pairs_ == 0 ? fit : std::min(pairs_, fit);
+    growing_ = std::max<std::size_t>(
+        1, pairs_within(double(max_bytes_), 0, memory_.per_pair + memory_.widest));
+}
+
+void ListLimits::check_estimate(double pairs, const std::string& subject) const {
+    if (max_pairs_ != 0 && pairs > double(max_pairs_)) {
+        throw PairLimitError(subject, pairs, max_pairs_);
+    }
+    const double bytes = memory_.peak(pairs, atoms_);
+    if (max_bytes_ != 0 && bytes > double(max_bytes_)) {
+        throw PairLimitError(
+            cat(subject, ", ", std::llround(bytes), " bytes at its peak (", memory_.rates(), ")"),
+            pairs, bytes, max_bytes_);
+    }
+}
+
+void ListLimits::fail_size(std::size_t size, const char* subject) const {
+    if (max_pairs_ != 0 && size > max_pairs_) {
+        throw PairLimitError(subject, double(size), max_pairs_);
+    }
+    const double bytes = memory_.peak(double(size), atoms_);
+    throw PairLimitError(cat(subject, ": ", size, " pairs are ", std::llround(bytes),
+                             " bytes at their peak (", memory_.rates(), ")"),
+                         double(size), bytes, max_bytes_);
+}
+
+void ListLimits::fail_growth(std::size_t size) const {
+    const double bytes = memory_.growing(double(size));
+    throw PairLimitError(cat("the neighbour list outgrew its estimate: growing its columns of ",
+                             size, " pairs needs ", std::llround(bytes), " bytes (",
+                             memory_.per_pair, " bytes a pair of ", memory_.columns, " + ",
+                             memory_.widest, " a pair while a column is copied)"),
+                         double(size), bytes, max_bytes_);
+}
+
+} // namespace detail
+} // namespace tricell

@@ -1,0 +1,78 @@
+// The memory of a stored list and the limits on it (docs/memory.md is this model in words).
+//
+// A list's columns cost a fixed number of bytes per pair (i and j 8, S 12, d 8, D 24). Besides
+// the list, a column that grows (a list past its estimate) holds its old and its new copy for
+// the time of the copy; grouping scatters one column at a time (the widest one extra) and keeps
+// 8 bytes per run of one atom's pairs (at most one run per pair, counted so); sorting holds an
+// 8-byte permutation and one column extra; both write 8-byte offsets and cursors per atom. The
+// peak of a list is its columns plus the working space of its order. NeighborOptions::max_bytes
+// bounds that peak, NeighborOptions::max_pairs the pairs: ListLimits turns both into pair
+// counts for the stores, and refuses an estimate or a list past either with a PairLimitError
+// that names the pairs, their bytes and the limit. (Exported for its test and the memory
+// benchmark.)
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+#include "tricell/export.hpp"
+#include "tricell/neighbor_list.hpp"
+
+namespace tricell::detail {
+
+/// Bytes of a list of given pairs and atoms, for one set of stored columns and order.
+struct TRICELL_API ListMemory {
+    double per_pair = 0;       ///< the stored columns
+    double widest = 0;         ///< the widest stored column (held twice while it grows)
+    double order_per_pair = 0; ///< grouping's or sorting's working space
+    double per_atom = 0;       ///< offsets and cursors (grouped or sorted)
+    std::string columns;       ///< "i, j, S, d"
+
+    /// The list at its peak: columns and the order's working space.
+    double peak(double pairs, std::size_t atoms) const;
+    /// The columns while one of them grows.
+    double growing(double pairs) const;
+    /// "52 bytes a pair of i, j, S, d, D + 32 a pair to sort them + 16 an atom".
+    std::string rates() const;
+};
+
+/// The memory model of the list `options` asks for (its quantities and order; a sorted list
+/// stores S while it sorts).
+TRICELL_API ListMemory list_memory(const NeighborOptions& options);
+
+/// options.max_pairs and options.max_bytes for a list of `atoms` atoms, as pair counts.
+class TRICELL_API ListLimits {
+  public:
+    ListLimits() = default; ///< no limit
+    ListLimits(const NeighborOptions& options, std::size_t atoms);
+
+    /// Refuses `pairs` estimated pairs past either limit before anything is allocated;
+    /// `subject` says where the estimate comes from ("cutoff 5 would give about 1e9 pairs
+    /// for 1000 atoms (estimated from the density)").
+    void check_estimate(double pairs, const std::string& subject) const;
+    /// The most pairs a list may hold (0: no limit).
+    std::size_t pairs() const { return pairs_; }
+    /// The refusal of a list that reached `size` > pairs() pairs while it was written;
+    /// `subject` names the list.
+    [[noreturn]] void
+    fail_size(std::size_t size,
+              const char* subject = "the neighbour list has too many pairs") const;
+    /// Refuses to grow columns of `size` pairs when the copy would pass max_bytes.
+    void check_growth(std::size_t size) const {
+        if (growing_ != 0 && size > growing_) {
+            fail_growth(size);
+        }
+    }
+
+  private:
+    [[noreturn]] void fail_growth(std::size_t size) const;
+
+    ListMemory memory_;
+    std::size_t atoms_ = 0;
+    std::size_t max_pairs_ = 0;
+    std::size_t max_bytes_ = 0;
+    std::size_t pairs_ = 0;   // min(max_pairs, the pairs whose peak fits max_bytes)
+    std::size_t growing_ = 0; // the most pairs whose columns may grow within max_bytes
+};
+
+} // namespace tricell::detail

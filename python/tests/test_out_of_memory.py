@@ -1,0 +1,154 @@
+"""Out of memory inside the module: each C++ allocation of a call, one at a time, fails.
+
+A child interpreter runs with the test-only library alloc_hook.cpp preloaded (LD_PRELOAD), which
+replaces the process's operator new and delete, counts the allocations not yet freed, and when
+armed makes the k-th allocation from then on throw std::bad_alloc (as the C API's alloc_test
+does in its own program). For every call below and k = 0, 1, ... until the call makes fewer than
+k + 1 allocations (then it runs through), the call must raise MemoryError (not RuntimeError,
+not a crash), must leave exactly as many C++ allocations alive as before it (each call makes and
+drops its own objects, so anything more is a leak), and the next call without failures must give
+the list of a call that never failed. Skipped where the hook is not built (sanitizer builds,
+installed copies), unless TRICELL_ALLOC_HOOK names it.
+"""
+import json
+import os
+import subprocess
+import sys
+
+import pytest
+
+import tricell
+
+
+def hook_path():
+    named = os.environ.get("TRICELL_ALLOC_HOOK")
+    if named:
+        return named
+    build_python = os.path.dirname(os.path.dirname(os.path.abspath(tricell.__file__)))
+    return os.path.join(build_python, "tests", "libtricell_alloc_hook.so")
+
+
+HOOK = hook_path()
+if not os.environ.get("TRICELL_ALLOC_HOOK") and not os.path.exists(HOOK):
+    pytest.skip("the allocation hook is not built here (alloc_hook.cpp)", allow_module_level=True)
+
+# Run in the child: every call builds its inputs and objects itself (inputs before the hook is
+# armed) and returns plain Python values, so nothing of the module outlives it.
+CHILD = r'''
+import ctypes, json, os, sys
+import numpy as np
+import tricell
+
+hook = ctypes.CDLL(os.environ["TRICELL_ALLOC_HOOK"])
+hook.tricell_alloc_hook_live.restype = ctypes.c_long
+hook.tricell_alloc_hook_failed.restype = ctypes.c_long
+hook.tricell_alloc_hook_fail_at.argtypes = [ctypes.c_long]
+
+rng = np.random.default_rng(7)
+cell = np.array([[6.0, 0.0, 0.0], [1.2, 6.5, 0.0], [0.7, -0.9, 7.1]])
+points = rng.uniform(-3.0, 10.0, (48, 3))
+other = rng.uniform(0.0, 5.0, (20, 3))
+radii = rng.uniform(0.5, 1.5, 48)
+species = rng.integers(0, 2, 48).astype(np.int32)
+
+
+def listed(arrays):
+    return [np.asarray(a).tolist() for a in (arrays if isinstance(arrays, tuple) else (arrays,))]
+
+
+def full_list():
+    return listed(tricell.NeighborList(3.0).compute(points, cell, True, "ijSdD"))
+
+
+def half_sorted_threads():
+    nl = tricell.NeighborList(3.0, full=False, sorted=True, threads=2)
+    return listed(nl.compute(points, cell, [True, False, True], "ijSdDPo"))
+
+
+def grouped_views():
+    nl = tricell.NeighborList(2.5, grouped=True)
+    return listed(nl.compute(points, cell, True, "ijSo", copy=False))
+
+
+def radii_and_species():
+    by_radii = tricell.NeighborList(None).compute(points, cell, True, "ijS", radii=radii)
+    table = tricell.NeighborList({(0, 0): 2.0, (0, 1): 2.5, (1, 1): 3.0})
+    return listed(by_radii) + listed(table.compute(points, cell, True, "ijS", species=species))
+
+
+def batch():
+    nl = tricell.NeighborList(2.8)
+    return listed(nl.compute_batch([points, other], [cell, 2 * cell], True, "ijSd"))
+
+
+def verlet():
+    vl = tricell.VerletList(3.0, 0.4)
+    first = listed(vl.update(points, cell, True, "ijS"))
+    return first + listed(vl.update(points + 0.05, cell, True, "ijS"))
+
+
+def verify():
+    i, j, S, d = tricell.NeighborList(3.0).compute(points, cell, True, "ijSd")
+    report = tricell.verify(points, cell, i, j, S, d, cutoff=3.0)
+    return [bool(report), report.message]
+
+
+calls = {f.__name__: f for f in (full_list, half_sorted_threads, grouped_views,
+                                  radii_and_species, batch, verlet, verify)}
+only = sys.argv[1:]
+results = {}
+for name, call in calls.items():
+    if only and name not in only:
+        continue
+    expected = call()
+    call()
+    runs = []
+    for k in range(100000):
+        live = hook.tricell_alloc_hook_live()
+        failed = hook.tricell_alloc_hook_failed()
+        error = None
+        hook.tricell_alloc_hook_fail_at(k)
+        try:
+            got = call()
+        except BaseException as e:
+            error = type(e).__name__ + ": " + str(e)
+        hook.tricell_alloc_hook_fail_at(-1)
+        hit = hook.tricell_alloc_hook_failed() > failed
+        runs.append({"k": k, "error": error, "hit": hit, "leaked": hook.tricell_alloc_hook_live() - live})
+        if not hit:
+            break
+    results[name] = {"runs": runs, "same": got == expected if error is None else False,
+                     "after": call() == expected}
+print(json.dumps(results))
+'''
+
+
+@pytest.fixture(scope="module")
+def child_results():
+    env = dict(os.environ, LD_PRELOAD=HOOK, TRICELL_ALLOC_HOOK=HOOK)
+    done = subprocess.run([sys.executable, "-c", CHILD], env=env, capture_output=True, text=True,
+                          timeout=600)
+    assert done.returncode == 0, f"the child failed ({done.returncode}):\n{done.stderr[-3000:]}"
+    return json.loads(done.stdout.strip().splitlines()[-1])
+
+
+CALLS = ["full_list", "half_sorted_threads", "grouped_views", "radii_and_species", "batch",
+         "verlet", "verify"]
+
+
+@pytest.mark.parametrize("call", CALLS)
+def test_every_failed_allocation_raises_memory_error_and_leaks_nothing(child_results, call):
+    result = child_results[call]
+    runs = result["runs"]
+    failing = runs[:-1]
+    # The call allocates (else the hook would test nothing) and each allocation was failed once.
+    assert len(failing) >= 3, runs
+    for run in failing:
+        assert run["hit"], run
+        assert run["error"] is not None and run["error"].startswith("MemoryError"), run
+        assert run["leaked"] == 0, run
+    last = runs[-1]
+    assert not last["hit"] and last["error"] is None, last
+    assert last["leaked"] == 0, last
+    assert result["same"], "the call that ran through gave another list"
+    assert result["after"], "a call after the failures gave another list"
