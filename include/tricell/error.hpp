@@ -94,9 +94,11 @@ class TRICELL_API ParseError : public Error {
 
 namespace detail {
 
-/// Concatenates the arguments with operator<< (doubles with 12 significant digits).
+/// Concatenates the arguments with operator<< (doubles with 12 significant digits). Out of memory
+/// throws std::bad_alloc (a stream would only set its badbit and lose the rest of the text).
 template <class... Args> std::string cat(Args&&... args) {
     std::ostringstream out;
+    out.exceptions(std::ios::badbit);
     out.precision(12);
     (out << ... << std::forward<Args>(args));
     return out.str();

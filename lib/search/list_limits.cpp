@@ -52,9 +52,7 @@ double ListMemory::growing(double pairs) const {
 std::string ListMemory::rates() const {
     std::string text = cat(per_pair, " bytes a pair of ", columns);
     if (order_per_pair > 0) {
-        text += cat(" + ", order_per_pair, " a pair to ",
-                    per_atom > 0 && order_per_pair > widest + 8 ? "sort" : "group", " them + ",
-                    per_atom, " an atom");
+        text += cat(" + ", order_per_pair, " a pair to ", order, " them + ", per_atom, " an atom");
     }
     return text;
 }
@@ -77,10 +75,12 @@ ListMemory list_memory(const NeighborOptions& options) {
     add(q.vectors, "D", 24);
     if (options.sorted) {
         m.order_per_pair = 8 + m.widest; // the permutation, one column being permuted
-        m.per_atom = 16;
+        m.per_atom = 16;                 // the offsets, a cursor
+        m.order = "sort";
     } else if (options.grouped) {
         m.order_per_pair = m.widest + 8; // one column being scattered, the runs
         m.per_atom = 16;
+        m.order = "group";
     }
     return m;
 }
@@ -101,16 +101,20 @@ ListLimits::ListLimits(const NeighborOptions& options, std::size_t atoms)
         1, pairs_within(double(max_bytes_), 0, memory_.per_pair + memory_.widest));
 }
 
-void ListLimits::check_estimate(double pairs, const std::string& subject) const {
-    if (max_pairs_ != 0 && pairs > double(max_pairs_)) {
+void ListLimits::check_estimate(double pairs, double cutoff) const {
+    const double bytes = memory_.peak(pairs, atoms_);
+    const bool over_pairs = max_pairs_ != 0 && pairs > double(max_pairs_);
+    if (!over_pairs && (max_bytes_ == 0 || bytes <= double(max_bytes_))) {
+        return; // the text below is composed only for a refusal
+    }
+    const std::string subject = cat("cutoff ", cutoff, " would give about ", pairs, " pairs for ",
+                                    atoms_, " atoms (estimated from the density)");
+    if (over_pairs) {
         throw PairLimitError(subject, pairs, max_pairs_);
     }
-    const double bytes = memory_.peak(pairs, atoms_);
-    if (max_bytes_ != 0 && bytes > double(max_bytes_)) {
-        throw PairLimitError(
-            cat(subject, ", ", std::llround(bytes), " bytes at its peak (", memory_.rates(), ")"),
-            pairs, bytes, max_bytes_);
-    }
+    throw PairLimitError(
+        cat(subject, ", ", std::llround(bytes), " bytes at its peak (", memory_.rates(), ")"),
+        pairs, bytes, max_bytes_);
 }
 
 void ListLimits::fail_size(std::size_t size, const char* subject) const {

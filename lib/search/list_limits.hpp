@@ -27,6 +27,7 @@ struct TRICELL_API ListMemory {
     double order_per_pair = 0; ///< grouping's or sorting's working space
     double per_atom = 0;       ///< offsets and cursors (grouped or sorted)
     std::string columns;       ///< "i, j, S, d"
+    const char* order = "";    ///< "sort", "group" or "" (unordered)
 
     /// The list at its peak: columns and the order's working space.
     double peak(double pairs, std::size_t atoms) const;
@@ -46,10 +47,10 @@ class TRICELL_API ListLimits {
     ListLimits() = default; ///< no limit
     ListLimits(const NeighborOptions& options, std::size_t atoms);
 
-    /// Refuses `pairs` estimated pairs past either limit before anything is allocated;
-    /// `subject` says where the estimate comes from ("cutoff 5 would give about 1e9 pairs
-    /// for 1000 atoms (estimated from the density)").
-    void check_estimate(double pairs, const std::string& subject) const;
+    /// Refuses `pairs` pairs estimated from the density at `cutoff` past either limit before
+    /// anything is allocated ("cutoff 5 would give about 1e9 pairs for 1000 atoms (estimated from
+    /// the density), ...").
+    void check_estimate(double pairs, double cutoff) const;
     /// The most pairs a list may hold (0: no limit).
     std::size_t pairs() const { return pairs_; }
     /// The refusal of a list that reached `size` > pairs() pairs while it was written;

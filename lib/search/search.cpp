@@ -90,10 +90,7 @@ void NeighborSearch::build(const Box& caller_box, PointsView positions,
     s.estimated_pairs =
         detail::estimated_system_pairs(box, n, wrapped.lower, wrapped.upper, cutoff, binning.half) *
         (double(query_size) / double(n));
-    detail::ListLimits(options, n)
-        .check_estimate(s.estimated_pairs,
-                        detail::cat("cutoff ", cutoff, " would give about ", s.estimated_pairs,
-                                    " pairs for ", n, " atoms (estimated from the density)"));
+    detail::ListLimits(options, n).check_estimate(s.estimated_pairs, cutoff);
 
     const SearchBackend kind =
         options.backend == SearchBackend::automatic
@@ -152,10 +149,13 @@ void NeighborSearch::compute(NeighborList& out) const {
                 expected_pairs(occupancy.atoms[u], occupancy.volume[u] * box_volume, sphere);
             total += expected[u];
         }
+        // Room for one claim of hits past the limits, so that a list reaching them is refused
+        // there, not by a growth it would not need.
         const detail::ListLimits limits(s.options, s.atom_count);
+        const std::size_t room = detail::pair_room(
+            total, limits.pairs() == 0 ? 0 : limits.pairs() + detail::PairSink::block_size);
         if (threads == 1) {
-            detail::PairSink sink(columns_of(columns), limits,
-                                  detail::pair_room(total, limits.pairs()));
+            detail::PairSink sink(columns_of(columns), limits, room);
             detail::CandidateScanner scan = s.scanner(sink);
             s.backend->visit(0, units, scan);
             sink.finish();
@@ -165,14 +165,12 @@ void NeighborSearch::compute(NeighborList& out) const {
                 work[u] = occupancy_work(occupancy.atoms[u], occupancy.neighbours);
             }
             const detail::BatchPlan plan = detail::plan_batches(work, expected, threads);
-            detail::ordered_search(
-                columns_of(columns), plan,
-                std::max(detail::pair_room(total, limits.pairs()), columns.i.capacity()), limits,
-                threads, out.thread_columns(), columns_of,
-                [&](std::size_t b, detail::PairSink& sink) {
-                    detail::CandidateScanner scan = s.scanner(sink);
-                    s.backend->visit(plan.bounds[b], plan.bounds[b + 1], scan);
-                });
+            detail::ordered_search(columns_of(columns), plan, std::max(room, columns.i.capacity()),
+                                   limits, threads, out.thread_columns(), columns_of,
+                                   [&](std::size_t b, detail::PairSink& sink) {
+                                       detail::CandidateScanner scan = s.scanner(sink);
+                                       s.backend->visit(plan.bounds[b], plan.bounds[b + 1], scan);
+                                   });
         }
         if (s.reduced_frame && keep_shifts) {
             detail::to_caller_frame(columns.shifts, s.to_caller);

@@ -1,9 +1,11 @@
 // A test-only preload library for test_out_of_memory.py: it replaces the global operator new and
 // delete of the process it is preloaded into (LD_PRELOAD), so that the C++ allocations of the
 // tricell module and library go through it, and counts them. Once armed, the k-th allocation
-// from then on throws std::bad_alloc, as the C API's alloc_test does in its own program. The
+// from then on throws std::bad_alloc, as the C API's alloc_test does in its own program (the
+// nothrow forms are counted but never failed). The
 // test drives it through ctypes; nothing of it is part of the module or the library.
 #include <atomic>
+#include <cstddef>
 #include <cstdlib>
 #include <new>
 
@@ -12,8 +14,10 @@ std::atomic<long> allocations_left{-1}; // -1: never fail
 std::atomic<long> live{0};              // allocations not yet freed
 std::atomic<long> failed{0};            // allocations refused so far
 
-void* allocate(std::size_t size, std::size_t alignment) {
-    if (allocations_left.load() >= 0 && allocations_left.fetch_sub(1) == 0) {
+// `may_fail`: false for the nothrow forms, whose callers expect a null pointer and do without
+// (std::stable_sort's buffer): they are not failed, so every failure injected throws.
+void* allocate(std::size_t size, std::size_t alignment, bool may_fail = true) {
+    if (may_fail && allocations_left.load() >= 0 && allocations_left.fetch_sub(1) == 0) {
         failed.fetch_add(1);
         throw std::bad_alloc();
     }
@@ -65,14 +69,14 @@ void* operator new[](std::size_t size, std::align_val_t alignment) {
 }
 void* operator new(std::size_t size, const std::nothrow_t&) noexcept {
     try {
-        return allocate(size, 0);
+        return allocate(size, 0, false);
     } catch (...) {
         return nullptr;
     }
 }
 void* operator new[](std::size_t size, const std::nothrow_t&) noexcept {
     try {
-        return allocate(size, 0);
+        return allocate(size, 0, false);
     } catch (...) {
         return nullptr;
     }

@@ -278,8 +278,8 @@ def test_a_refused_memory_limit_names_the_keyword_max_bytes():
     positions = np.random.default_rng(3).uniform(0, 1.5, (30, 3))
     pairs = len(tricell.NeighborList(cutoff).compute(positions, cell, pbc, "i"))
     assert pairs == 30 * 29
-    fits = 32 * pairs
-    # i, j, S, d: 32 bytes a pair; one byte short of the list is refused, with the pairs, their
+    fits = 28 * pairs
+    # i, j, S, d: 28 bytes a pair; one byte short of the list is refused, with the pairs, their
     # bytes and the limit in the keyword's name.
     tail = ", more than max_bytes = %d (" % (fits - 1)
     raise_it = " GiB); raise max_bytes to allow it (0 = no limit)"
@@ -288,8 +288,8 @@ def test_a_refused_memory_limit_names_the_keyword_max_bytes():
         with pytest.raises(ValueError) as refused:
             make().compute(positions, cell, pbc)
         text = str(refused.value)
-        assert text.startswith("the neighbour list has too many pairs: 870 pairs are 27840 "
-                               "bytes at their peak (32 bytes a pair of i, j, S, d)"), text
+        assert text.startswith("the neighbour list has too many pairs: 870 pairs are 24360 "
+                               "bytes at their peak (28 bytes a pair of i, j, S, d)"), text
         assert tail in text and text.endswith(raise_it), text
         assert "NeighborOptions" not in text, text
     with pytest.raises(ValueError) as refused:
