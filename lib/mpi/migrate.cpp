@@ -161,7 +161,7 @@ void pack(const LocalAtoms& atoms, std::size_t a, std::vector<double>& out) {
 } // namespace
 
 bool migrate(const Decomposition& decomposition, const Box& box, LocalAtoms& atoms,
-             const std::vector<int>& neighbors) {
+             const std::vector<int>& neighbors, Traffic* sent) {
     const MPI_Comm comm = decomposition.comm();
     const int me = decomposition.rank();
     std::vector<int> own;
@@ -200,6 +200,10 @@ bool migrate(const Decomposition& decomposition, const Box& box, LocalAtoms& ato
         if (sources[n] == me) {
             in[n].swap(out[n]);
             continue;
+        }
+        if (sent) {
+            sent->messages += 1;
+            sent->bytes += out[n].size() * sizeof(double);
         }
         requests.emplace_back();
         detail::check_mpi(MPI_Isend(out[n].data(), int(out[n].size()), MPI_DOUBLE, sources[n],
