@@ -12,7 +12,6 @@
 
 namespace tricell {
 
-
 void VerletOptions::validate() const {
     if (neighbors.variable_cutoff()) {
         detail::fail<InvalidArgument>(

@@ -78,14 +78,12 @@ template <class F> std::size_t with_flag(bool flag, F f) {
     return flag ? f(std::true_type{}) : f(std::false_type{});
 }
 
-Traffic last_exchange(const Halo& halo) {
-    return Traffic{std::uint64_t(halo.stats().messages_sent),
-                   std::uint64_t(halo.stats().bytes_sent)};
+void add_exchange(const Halo& halo, Traffic& to) {
+    to.add(std::uint64_t(halo.stats().messages_sent), std::uint64_t(halo.stats().bytes_sent));
 }
 
-Traffic last_values(const Halo& halo) {
-    return Traffic{std::uint64_t(halo.comm_messages_sent()),
-                   std::uint64_t(halo.comm_bytes_sent())};
+void add_values(const Halo& halo, Traffic& to) {
+    to.add(std::uint64_t(halo.comm_messages_sent()), std::uint64_t(halo.comm_bytes_sent()));
 }
 
 } // namespace
@@ -110,17 +108,18 @@ bool DistributedVerletList::update(const Decomposition& decomposition, const Box
     // Can the build still serve? Every rank must say yes (one MPI_Allreduce with the input check).
     int keep =
         built_ && atoms.size() == halo_.owned_count() && box.periodicity() == built_periodicity_;
-    detail::agreed(comm, [&] { atoms.validate(); }, &keep);
+    detail::agreed(
+        comm, [&] { atoms.validate(); }, &keep);
     if (keep) {
         halo_.update(decomposition, box, atoms.points());
-        traffic_.halo_update += last_exchange(halo_);
+        add_exchange(halo_, traffic_.halo_update);
         // The owned atoms only: a ghost moved as its owner did, whose rank checks it.
         detail::agreed(
             comm,
             [&] {
-                keep = !tracker_.needs_rebuild(open, PointsView(halo_.positions().data(),
-                                                                halo_.owned_count()),
-                                               options_.skin, options_.neighbors.cutoff);
+                keep = !tracker_.needs_rebuild(
+                    open, PointsView(halo_.positions().data(), halo_.owned_count()), options_.skin,
+                    options_.neighbors.cutoff);
             },
             &keep);
     }
@@ -136,7 +135,7 @@ bool DistributedVerletList::update(const Decomposition& decomposition, const Box
             ++alltoall_migrations_;
         }
         halo_.build(decomposition, box, atoms.ids, atoms.points(), list_radius());
-        traffic_.halo_build += last_exchange(halo_);
+        add_exchange(halo_, traffic_.halo_build);
         halo_built_ = true;
         build(decomposition, open);
         built_ = true;
@@ -197,8 +196,8 @@ void DistributedVerletList::refresh() {
     out.shifts.resize(q.shifts ? 3 * capacity : 0);
     out.distances.resize(q.distances ? capacity : 0);
     out.vectors.resize(q.vectors ? 3 * capacity : 0);
-    const RefreshColumns columns{out.owned.data(),  out.local_j.data(),   out.i.data(),
-                                 out.j.data(),      out.shifts.data(),    out.distances.data(),
+    const RefreshColumns columns{out.owned.data(),  out.local_j.data(), out.i.data(),
+                                 out.j.data(),      out.shifts.data(),  out.distances.data(),
                                  out.vectors.data()};
     const double cutoff_sq = tricell::detail::strict_threshold_sq(options_.neighbors.cutoff);
     auto run = [&](auto shifts, auto distances, auto vectors) {
@@ -226,21 +225,19 @@ void DistributedVerletList::refresh() {
 void DistributedVerletList::forward(const Decomposition& decomposition, const Box& box,
                                     const LocalAtoms& atoms) {
     halo_.update(decomposition, box, atoms.points());
-    traffic_.halo_update += last_exchange(halo_);
+    add_exchange(halo_, traffic_.halo_update);
 }
 
 void DistributedVerletList::forward_values(const Decomposition& decomposition,
-                                           std::vector<double>& values,
-                                           std::size_t width) const {
+                                           std::vector<double>& values, std::size_t width) const {
     halo_.forward(decomposition, values, width);
-    traffic_.forward += last_values(halo_);
+    add_values(halo_, traffic_.forward);
 }
 
 void DistributedVerletList::reverse_sum(const Decomposition& decomposition,
-                                        std::vector<double>& values,
-                                        std::size_t width) const {
+                                        std::vector<double>& values, std::size_t width) const {
     halo_.reverse_sum(decomposition, values, width);
-    traffic_.reverse_sum += last_values(halo_);
+    add_values(halo_, traffic_.reverse_sum);
 }
 
 } // namespace tricell::mpi

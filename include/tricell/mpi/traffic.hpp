@@ -1,20 +1,39 @@
 // What a rank sends: messages and bytes of its point-to-point communication, by kind, counted by
-// the library where it sends them (the counted side of the model in tricell/mpi.hpp).
+// the library where it sends them, and the model of tricell/mpi.hpp they are compared with.
+//
+// The model, for a grid of d_k equal domains along each periodic axis k of a box with
+// perpendicular widths w_k, n atoms per rank at uniform density and a halo reach r: the halo of
+// a domain is its fractional box widened by r / w_k on each side, so it holds
+//     ghosts per owned atom     g = prod_k (1 + 2 r d_k / w_k) - 1,
+// of which the images of the rank's own atoms (along the axes with one domain, d_k = 1) are
+//     g_self = prod_{k: d_k = 1} (1 + 2 r / w_k) - 1
+// and are copied, not sent; a rank sends as many ghosts as it receives on average,
+// n (g - g_self). Its neighbour ranks are M = prod_k min(d_k, 2 ceil(r d_k / w_k) + 1) - 1 (26
+// in a large grid with r below a domain's width), one message each way per exchange. Bytes per
+// sent ghost: Halo::build_record_bytes at a build, Halo::update_record_bytes per update, 8 w for
+// w doubles per atom in forward() and reverse_sum(). Ghosts are expected values (exact up to
+// the fluctuation of the atoms in the halo); messages are exact.
 #pragma once
 
 #include <cstdint>
 
+#include "tricell/box.hpp"
+#include "tricell/mpi/decomposition.hpp"
+#include "tricell/mpi/export.hpp"
+
 namespace tricell::mpi {
 
-/// Messages and bytes one rank sent, summed over calls.
+/// Messages and bytes one rank sent, summed over `exchanges` calls.
 struct Traffic {
+    std::uint64_t exchanges = 0;
     std::uint64_t messages = 0;
     std::uint64_t bytes = 0;
 
-    Traffic& operator+=(const Traffic& other) {
-        messages += other.messages;
-        bytes += other.bytes;
-        return *this;
+    /// Adds one exchange that sent `messages` messages of `bytes` bytes in all.
+    void add(std::uint64_t message_count, std::uint64_t byte_count) {
+        ++exchanges;
+        messages += message_count;
+        bytes += byte_count;
     }
 };
 
@@ -29,5 +48,17 @@ struct ListTraffic {
     Traffic reverse_sum; ///< reverse_sum() of per-ghost values
     Traffic forward;     ///< forward_values() of per-atom values
 };
+
+/// The model above for one rank (periodic boxes; equal domains).
+struct HaloModel {
+    double ghosts_per_atom = 0;      ///< g
+    double sent_ghosts_per_atom = 0; ///< g - g_self: ghosts sent (and received) per owned atom
+    int messages = 0;                ///< M, per exchange
+};
+
+/// Collective-free. The model for `decomposition`'s grid (its boundaries are not read: equal
+/// domains assumed) in `box` (every axis periodic, else InvalidArgument) at halo reach `reach`.
+TRICELL_MPI_API HaloModel halo_model(const Decomposition& decomposition, const Box& box,
+                                     double reach);
 
 } // namespace tricell::mpi

@@ -38,13 +38,13 @@
 #include <vector>
 
 #include "tricell/box.hpp"
+#include "tricell/displacement.hpp"
 #include "tricell/mpi/atoms.hpp"
 #include "tricell/mpi/decomposition.hpp"
 #include "tricell/mpi/export.hpp"
 #include "tricell/mpi/halo.hpp"
 #include "tricell/mpi/neighbors.hpp"
 #include "tricell/mpi/traffic.hpp"
-#include "tricell/displacement.hpp"
 #include "tricell/neighbor_list.hpp"
 #include "tricell/verlet.hpp"
 
