@@ -235,7 +235,7 @@ void Halo::update(const Decomposition& decomposition, const Box& box, PointsView
         Eigen::Vector3d c = Eigen::Vector3d::Zero();
         for (int k = 0; k < 3; ++k) {
             if (pbc_[k]) {
-                c[k] = std::round(s[k] - reference_[3 * a + std::size_t(k)]);
+                c[k] = std::nearbyint(s[k] - reference_[3 * a + std::size_t(k)]);
             }
         }
         const Eigen::Vector3d y = x - hm * c;
