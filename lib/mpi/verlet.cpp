@@ -102,48 +102,56 @@ void DistributedVerletList::reset() {
 
 bool DistributedVerletList::update(const Decomposition& decomposition, const Box& box,
                                    LocalAtoms& atoms) {
-    const MPI_Comm comm = decomposition.comm();
-    const Box open = Box::from_columns(box.matrix(), Periodicity::none());
+    // On an error (thrown on every rank alike) the build is forgotten and the pairs emptied, as
+    // the serial list does: the next update() rebuilds.
+    try {
+        const MPI_Comm comm = decomposition.comm();
+        const Box open = Box::from_columns(box.matrix(), Periodicity::none());
 
-    // Can the build still serve? Every rank must say yes (one MPI_Allreduce with the input check).
-    int keep =
-        built_ && atoms.size() == halo_.owned_count() && box.periodicity() == built_periodicity_;
-    detail::agreed(
-        comm, [&] { atoms.validate(); }, &keep);
-    if (keep) {
-        halo_.update(decomposition, box, atoms.points());
-        add_exchange(halo_, traffic_.halo_update);
-        // The owned atoms only: a ghost moved as its owner did, whose rank checks it.
+        // Can the build still serve? Every rank must say yes (one MPI_Allreduce with the input
+        // check).
+        int keep = built_ && atoms.size() == halo_.owned_count() &&
+                   box.periodicity() == built_periodicity_;
         detail::agreed(
-            comm,
-            [&] {
-                keep = !tracker_.needs_rebuild(
-                    open, PointsView(halo_.positions().data(), halo_.owned_count()), options_.skin,
-                    options_.neighbors.cutoff);
-            },
-            &keep);
-    }
-    if (!keep) {
-        built_ = false;
-        // Among the last halo's neighbour ranks when every atom's owner is one of them (an atom
-        // moves less than the halo reach in a Verlet interval), else MPI_Alltoall.
-        if (!halo_built_ ||
-            !migrate(decomposition, box, atoms, halo_.neighbor_ranks(), &traffic_.migration)) {
-            if (!halo_built_) {
-                migrate(decomposition, box, atoms);
-            }
-            ++alltoall_migrations_;
+            comm, [&] { atoms.validate(); }, &keep);
+        if (keep) {
+            halo_.update(decomposition, box, atoms.points());
+            add_exchange(halo_, traffic_.halo_update);
+            // The owned atoms only: a ghost moved as its owner did, whose rank checks it.
+            detail::agreed(
+                comm,
+                [&] {
+                    keep = !tracker_.needs_rebuild(
+                        open, PointsView(halo_.positions().data(), halo_.owned_count()),
+                        options_.skin, options_.neighbors.cutoff);
+                },
+                &keep);
         }
-        halo_.build(decomposition, box, atoms.ids, atoms.points(), list_radius());
-        add_exchange(halo_, traffic_.halo_build);
-        halo_built_ = true;
-        build(decomposition, open);
-        built_ = true;
-        built_periodicity_ = box.periodicity();
-        ++rebuild_count_;
+        if (!keep) {
+            built_ = false;
+            // Among the last halo's neighbour ranks when every atom's owner is one of them (an atom
+            // moves less than the halo reach in a Verlet interval), else MPI_Alltoall.
+            if (!halo_built_ ||
+                !migrate(decomposition, box, atoms, halo_.neighbor_ranks(), &traffic_.migration)) {
+                if (!halo_built_) {
+                    migrate(decomposition, box, atoms);
+                }
+                ++alltoall_migrations_;
+            }
+            halo_.build(decomposition, box, atoms.ids, atoms.points(), list_radius());
+            add_exchange(halo_, traffic_.halo_build);
+            halo_built_ = true;
+            build(decomposition, open);
+            built_ = true;
+            built_periodicity_ = box.periodicity();
+            ++rebuild_count_;
+        }
+        refresh();
+        return !keep;
+    } catch (...) {
+        reset();
+        throw;
     }
-    refresh();
-    return !keep;
 }
 
 void DistributedVerletList::build(const Decomposition& decomposition, const Box& open) {

@@ -11,6 +11,7 @@
 #include "mpi_lj.hpp"
 #include "mpi_support.hpp"
 #include "support/random_boxes.hpp"
+#include "tricell/error.hpp"
 
 namespace {
 
@@ -136,6 +137,40 @@ TEST(MpiVerlet, RandomWalkInShearedPartlyPeriodicBox_FullAndHalfListsMatchSerial
         EXPECT_GT(list.rebuild_count(), std::size_t(1));
         EXPECT_LT(list.rebuild_count(), std::size_t(25));
     }
+}
+
+TEST(MpiVerlet, BadPositionOnOneRank_ThrowsEverywhere_ThenRebuilds) {
+    std::mt19937_64 rng(5);
+    std::uniform_real_distribution<double> unit(0, 1);
+    const Eigen::Matrix3d h = random_box_matrix(rng, 6, 9, 1.5);
+    const Box box = Box::from_columns(h);
+    std::vector<Eigen::Vector3d> x(200);
+    for (auto& v : x) {
+        v = h * Eigen::Vector3d(unit(rng), unit(rng), unit(rng));
+    }
+    const double cutoff = 0.3 * box.perpendicular_widths().minCoeff();
+    tricell::VerletOptions verlet;
+    verlet.neighbors.cutoff = cutoff;
+    verlet.neighbors.half = true;
+    verlet.neighbors.quantities = tricell::Quantities{true, true, true};
+    verlet.skin = 0.2;
+    tricell::mpi::DistributedVerletList list(verlet);
+    tricell::mpi::Decomposition d(MPI_COMM_WORLD);
+    tricell::mpi::LocalAtoms atoms = deal(x);
+    EXPECT_TRUE(list.update(d, box, atoms));
+    const bool bad_here = world_rank() == world_size() - 1 && atoms.size() > 0;
+    const double kept = bad_here ? atoms.positions[1] : 0.0;
+    if (bad_here) {
+        atoms.positions[1] = std::nan("");
+    }
+    EXPECT_THROW(list.update(d, box, atoms), tricell::InvalidArgument);
+    EXPECT_EQ(list.pairs().size(), 0u);
+    if (bad_here) {
+        atoms.positions[1] = kept;
+    }
+    EXPECT_TRUE(list.update(d, box, atoms));
+    EXPECT_EQ(compare_with_serial(list.pairs(), atoms, box, serial_options(cutoff, true), d.comm()),
+              "");
 }
 
 // Sum over ranks.

@@ -62,6 +62,8 @@ class TRICELL_MPI_API DistributedVerletList {
     /// Collective. Refreshes this rank's pairs for the current positions (caller positions,
     /// wrapped or not) and box. When the ranks agree to rebuild, atoms migrate first: `atoms`
     /// (ids, positions, payload) may then change order and size. Returns true if it rebuilt.
+    /// Bad input on any rank (a non-finite position, ...) throws on every rank; the pairs are
+    /// then left empty and the next update() rebuilds.
     bool update(const Decomposition& decomposition, const Box& box, LocalAtoms& atoms);
     /// Collective. Refreshes the ghosts' positions from their owners' current `atoms` (the same
     /// atoms as the last update(), in the same order), without a search or a rebuild vote:
