@@ -30,8 +30,10 @@ struct Entry {
     bool turned;       // a half-list entry given as (j, i, -S)
 };
 
+// (The streams throw std::bad_alloc rather than lose text when memory runs out.)
 std::string describe(const PairKey& key) {
     std::ostringstream out;
+    out.exceptions(std::ios::badbit);
     out << "(" << key[0] << ", " << key[1] << ", [" << key[2] << " " << key[3] << " " << key[4]
         << "])";
     return out.str();
@@ -39,6 +41,7 @@ std::string describe(const PairKey& key) {
 
 std::string number(double value) {
     std::ostringstream out;
+    out.exceptions(std::ios::badbit);
     out.precision(6);
     out << value;
     return out.str();

@@ -12,6 +12,7 @@ namespace {
 
 std::string shape_of(const py::array& a) {
     std::ostringstream out;
+    out.exceptions(std::ios::badbit); // out of memory: bad_alloc, not a shortened text
     out << '(';
     for (py::ssize_t k = 0; k < a.ndim(); ++k) {
         out << (k ? ", " : "") << a.shape(k);
@@ -197,12 +198,14 @@ std::vector<std::int32_t> species_array(const py::handle& values, const char* na
             const double v = wide.data()[k];
             if (!(std::floor(v) == v)) { // NaN and infinities too
                 std::ostringstream text;
+                text.exceptions(std::ios::badbit);
                 text << name << " must be integers (got " << name << "[" << k << "] = " << v
                      << ", dtype " << dtype_of(a) << ")";
                 value_error(text.str());
             }
             if (v < INT32_MIN || v > INT32_MAX) {
                 std::ostringstream text;
+                text.exceptions(std::ios::badbit);
                 text << v;
                 out_of_range(k, text.str());
             }
