@@ -273,8 +273,10 @@ bool take_max_bytes(Arguments& arguments, std::size_t& max_bytes) {
     if (end > 0 && end + 1 == text.size()) {
         const std::string units = "KMGT";
         const std::size_t power = units.find(char(std::toupper(text[end])));
-        unit = power == std::string::npos ? 0 : std::ldexp(1.0, 10 * int(power + 1));
-        ++end;
+        if (power != std::string::npos) {
+            unit = std::ldexp(1.0, 10 * int(power + 1));
+            ++end;
+        }
     }
     const double bytes = n * unit;
     if (end == 0 || end != text.size() || !(bytes >= 0 && bytes <= 0x1p63) ||

@@ -562,7 +562,7 @@ TEST_F(Cli, MaxBytesRefusesLargerSearchesWithStatus1) {
         EXPECT_EQ(run(command + " --max-bytes 0").status, 0);
         EXPECT_EQ(run(command + " --max-bytes 1M").status, 0);
     }
-    for (const std::string value : {"-1", "1.5", "12X", "1e30", "G", ""}) {
+    for (const std::string value : {"-1", "1.5", "12X", "1e30", "G", "0.3K"}) {
         SCOPED_TRACE(value);
         const Result bad = run("neighbors quartz.cif --cutoff 3 --max-bytes '" + value + "'");
         EXPECT_EQ(bad.status, 2);
