@@ -16,11 +16,12 @@ namespace {
 // (Hit k is recorded as label + k.)
 std::uint32_t within_cutoff_generic(const double* x, const double* y, const double* z,
                                     std::uint32_t count, double ax, double ay, double az,
-                                    double cutoff_sq, std::uint32_t* hits, double* hit_d_sq,
-                                    std::uint32_t label) {
+                                    const double* shift, double cutoff_sq, std::uint32_t* hits,
+                                    double* hit_d_sq, std::uint32_t label) {
+    const double vx = shift[0], vy = shift[1], vz = shift[2];
     double d_sq[kernel_block];
     for (std::uint32_t k = 0; k < count; ++k) {
-        const double dx = x[k] - ax, dy = y[k] - ay, dz = z[k] - az;
+        const double dx = (x[k] - ax) + vx, dy = (y[k] - ay) + vy, dz = (z[k] - az) + vz;
         d_sq[k] = dx * dx + dy * dy + dz * dz;
     }
     std::uint32_t found = 0;
@@ -34,18 +35,20 @@ std::uint32_t within_cutoff_generic(const double* x, const double* y, const doub
 
 std::uint32_t within_cutoff_one_generic(const double* x, const double* y, const double* z,
                                         std::uint32_t count, double ax, double ay, double az,
-                                        double cutoff_sq, std::uint32_t* hits, double* hit_d_sq) {
-    return within_cutoff_generic(x, y, z, count, ax, ay, az, cutoff_sq, hits, hit_d_sq, 0);
+                                        const double* shift, double cutoff_sq, std::uint32_t* hits,
+                                        double* hit_d_sq) {
+    return within_cutoff_generic(x, y, z, count, ax, ay, az, shift, cutoff_sq, hits, hit_d_sq, 0);
 }
 
 std::uint32_t within_cutoff_group_generic(const double* x, const double* y, const double* z,
                                           std::uint32_t count, const double* ax, const double* ay,
-                                          const double* az, std::uint32_t group, double cutoff_sq,
+                                          const double* az, std::uint32_t group,
+                                          const double* shift, double cutoff_sq,
                                           std::uint32_t* hits, double* hit_d_sq) {
     std::uint32_t found = 0;
     for (std::uint32_t g = 0; g < group; ++g) {
-        found += within_cutoff_generic(x, y, z, count, ax[g], ay[g], az[g], cutoff_sq, hits + found,
-                                       hit_d_sq + found, g * kernel_block);
+        found += within_cutoff_generic(x, y, z, count, ax[g], ay[g], az[g], shift, cutoff_sq,
+                                       hits + found, hit_d_sq + found, g * kernel_block);
     }
     return found;
 }
@@ -84,16 +87,18 @@ const CompressTables compress_tables;
 // (Hit k is recorded as label + k.)
 __attribute__((target("avx2"))) inline std::uint32_t
 within_cutoff_avx2(const double* x, const double* y, const double* z, std::uint32_t count,
-                   double ax, double ay, double az, double cutoff_sq, std::uint32_t* hits,
-                   double* hit_d_sq, std::uint32_t label) {
+                   double ax, double ay, double az, const double* shift, double cutoff_sq,
+                   std::uint32_t* hits, double* hit_d_sq, std::uint32_t label) {
     const __m256d vax = _mm256_set1_pd(ax), vay = _mm256_set1_pd(ay), vaz = _mm256_set1_pd(az);
+    const __m256d vvx = _mm256_set1_pd(shift[0]), vvy = _mm256_set1_pd(shift[1]),
+                  vvz = _mm256_set1_pd(shift[2]);
     const __m256d vcut = _mm256_set1_pd(cutoff_sq);
     std::uint32_t found = 0;
     std::uint32_t k = 0;
     for (; k + 4 <= count; k += 4) {
-        const __m256d dx = _mm256_sub_pd(_mm256_loadu_pd(x + k), vax);
-        const __m256d dy = _mm256_sub_pd(_mm256_loadu_pd(y + k), vay);
-        const __m256d dz = _mm256_sub_pd(_mm256_loadu_pd(z + k), vaz);
+        const __m256d dx = _mm256_add_pd(_mm256_sub_pd(_mm256_loadu_pd(x + k), vax), vvx);
+        const __m256d dy = _mm256_add_pd(_mm256_sub_pd(_mm256_loadu_pd(y + k), vay), vvy);
+        const __m256d dz = _mm256_add_pd(_mm256_sub_pd(_mm256_loadu_pd(z + k), vaz), vvz);
         const __m256d d_sq = _mm256_add_pd(
             _mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy)), _mm256_mul_pd(dz, dz));
         const int mask = _mm256_movemask_pd(_mm256_cmp_pd(d_sq, vcut, _CMP_LT_OQ));
@@ -108,7 +113,8 @@ within_cutoff_avx2(const double* x, const double* y, const double* z, std::uint3
         found += static_cast<std::uint32_t>(__builtin_popcount(static_cast<unsigned>(mask)));
     }
     for (; k < count; ++k) {
-        const double dx = x[k] - ax, dy = y[k] - ay, dz = z[k] - az;
+        const double dx = (x[k] - ax) + shift[0], dy = (y[k] - ay) + shift[1],
+                     dz = (z[k] - az) + shift[2];
         const double d_sq = dx * dx + dy * dy + dz * dz;
         hits[found] = label + k;
         hit_d_sq[found] = d_sq;
@@ -119,19 +125,20 @@ within_cutoff_avx2(const double* x, const double* y, const double* z, std::uint3
 
 __attribute__((target("avx2"))) std::uint32_t
 within_cutoff_one_avx2(const double* x, const double* y, const double* z, std::uint32_t count,
-                       double ax, double ay, double az, double cutoff_sq, std::uint32_t* hits,
-                       double* hit_d_sq) {
-    return within_cutoff_avx2(x, y, z, count, ax, ay, az, cutoff_sq, hits, hit_d_sq, 0);
+                       double ax, double ay, double az, const double* shift, double cutoff_sq,
+                       std::uint32_t* hits, double* hit_d_sq) {
+    return within_cutoff_avx2(x, y, z, count, ax, ay, az, shift, cutoff_sq, hits, hit_d_sq, 0);
 }
 
 __attribute__((target("avx2"))) std::uint32_t
 within_cutoff_group_avx2(const double* x, const double* y, const double* z, std::uint32_t count,
                          const double* ax, const double* ay, const double* az, std::uint32_t group,
-                         double cutoff_sq, std::uint32_t* hits, double* hit_d_sq) {
+                         const double* shift, double cutoff_sq, std::uint32_t* hits,
+                         double* hit_d_sq) {
     std::uint32_t found = 0;
     for (std::uint32_t g = 0; g < group; ++g) {
-        found += within_cutoff_avx2(x, y, z, count, ax[g], ay[g], az[g], cutoff_sq, hits + found,
-                                    hit_d_sq + found, g * kernel_block);
+        found += within_cutoff_avx2(x, y, z, count, ax[g], ay[g], az[g], shift, cutoff_sq,
+                                    hits + found, hit_d_sq + found, g * kernel_block);
     }
     return found;
 }
@@ -142,17 +149,22 @@ within_cutoff_group_avx2(const double* x, const double* y, const double* z, std:
 // same order as the other versions; the file is compiled without contraction into FMAs.
 __attribute__((target("avx512f,avx512vl"))) inline std::uint32_t
 within_cutoff_avx512(const double* x, const double* y, const double* z, std::uint32_t count,
-                     double ax, double ay, double az, double cutoff_sq, std::uint32_t* hits,
-                     double* hit_d_sq, std::uint32_t label) {
+                     double ax, double ay, double az, const double* shift, double cutoff_sq,
+                     std::uint32_t* hits, double* hit_d_sq, std::uint32_t label) {
     const __m512d vax = _mm512_set1_pd(ax), vay = _mm512_set1_pd(ay), vaz = _mm512_set1_pd(az);
+    const __m512d vvx = _mm512_set1_pd(shift[0]), vvy = _mm512_set1_pd(shift[1]),
+                  vvz = _mm512_set1_pd(shift[2]);
     const __m512d vcut = _mm512_set1_pd(cutoff_sq);
     const __m256i lanes = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
     std::uint32_t found = 0;
     for (std::uint32_t k = 0; k < count; k += 8) {
         const __mmask8 valid = count - k >= 8 ? __mmask8(0xFF) : __mmask8((1u << (count - k)) - 1);
-        const __m512d dx = _mm512_sub_pd(_mm512_maskz_loadu_pd(valid, x + k), vax);
-        const __m512d dy = _mm512_sub_pd(_mm512_maskz_loadu_pd(valid, y + k), vay);
-        const __m512d dz = _mm512_sub_pd(_mm512_maskz_loadu_pd(valid, z + k), vaz);
+        const __m512d dx =
+            _mm512_add_pd(_mm512_sub_pd(_mm512_maskz_loadu_pd(valid, x + k), vax), vvx);
+        const __m512d dy =
+            _mm512_add_pd(_mm512_sub_pd(_mm512_maskz_loadu_pd(valid, y + k), vay), vvy);
+        const __m512d dz =
+            _mm512_add_pd(_mm512_sub_pd(_mm512_maskz_loadu_pd(valid, z + k), vaz), vvz);
         const __m512d d_sq = _mm512_add_pd(
             _mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy)), _mm512_mul_pd(dz, dz));
         const __mmask8 hit = _mm512_mask_cmp_pd_mask(valid, d_sq, vcut, _CMP_LT_OQ);
@@ -168,20 +180,20 @@ within_cutoff_avx512(const double* x, const double* y, const double* z, std::uin
 
 __attribute__((target("avx512f,avx512vl"))) std::uint32_t
 within_cutoff_one_avx512(const double* x, const double* y, const double* z, std::uint32_t count,
-                         double ax, double ay, double az, double cutoff_sq, std::uint32_t* hits,
-                         double* hit_d_sq) {
-    return within_cutoff_avx512(x, y, z, count, ax, ay, az, cutoff_sq, hits, hit_d_sq, 0);
+                         double ax, double ay, double az, const double* shift, double cutoff_sq,
+                         std::uint32_t* hits, double* hit_d_sq) {
+    return within_cutoff_avx512(x, y, z, count, ax, ay, az, shift, cutoff_sq, hits, hit_d_sq, 0);
 }
 
 __attribute__((target("avx512f,avx512vl"))) std::uint32_t
 within_cutoff_group_avx512(const double* x, const double* y, const double* z, std::uint32_t count,
                            const double* ax, const double* ay, const double* az,
-                           std::uint32_t group, double cutoff_sq, std::uint32_t* hits,
-                           double* hit_d_sq) {
+                           std::uint32_t group, const double* shift, double cutoff_sq,
+                           std::uint32_t* hits, double* hit_d_sq) {
     std::uint32_t found = 0;
     for (std::uint32_t g = 0; g < group; ++g) {
-        found += within_cutoff_avx512(x, y, z, count, ax[g], ay[g], az[g], cutoff_sq, hits + found,
-                                      hit_d_sq + found, g * kernel_block);
+        found += within_cutoff_avx512(x, y, z, count, ax[g], ay[g], az[g], shift, cutoff_sq,
+                                      hits + found, hit_d_sq + found, g * kernel_block);
     }
     return found;
 }
@@ -240,16 +252,16 @@ std::vector<DistanceKernel> distance_kernels() {
 }
 
 std::uint32_t within_cutoff(const double* x, const double* y, const double* z, std::uint32_t count,
-                            double ax, double ay, double az, double cutoff_sq, std::uint32_t* hits,
-                            double* hit_d_sq) {
-    return chosen.one(x, y, z, count, ax, ay, az, cutoff_sq, hits, hit_d_sq);
+                            double ax, double ay, double az, const double* shift, double cutoff_sq,
+                            std::uint32_t* hits, double* hit_d_sq) {
+    return chosen.one(x, y, z, count, ax, ay, az, shift, cutoff_sq, hits, hit_d_sq);
 }
 
 std::uint32_t within_cutoff_group(const double* x, const double* y, const double* z,
                                   std::uint32_t count, const double* ax, const double* ay,
-                                  const double* az, std::uint32_t group, double cutoff_sq,
-                                  std::uint32_t* hits, double* hit_d_sq) {
-    return chosen.group(x, y, z, count, ax, ay, az, group, cutoff_sq, hits, hit_d_sq);
+                                  const double* az, std::uint32_t group, const double* shift,
+                                  double cutoff_sq, std::uint32_t* hits, double* hit_d_sq) {
+    return chosen.group(x, y, z, count, ax, ay, az, group, shift, cutoff_sq, hits, hit_d_sq);
 }
 
 void square_roots(const double* in, std::uint32_t count, double* out) {
