@@ -85,6 +85,7 @@ const CompressTables compress_tables;
 // AVX2: four distances at a time (mul and add, no FMA, same order as the generic loop), then the
 // hits are compressed with a lane permutation from a 16-entry table: no branch per hit.
 // (Hit k is recorded as label + k.)
+template <bool Shifted>
 __attribute__((target("avx2"))) inline std::uint32_t
 within_cutoff_avx2(const double* x, const double* y, const double* z, std::uint32_t count,
                    double ax, double ay, double az, const double* shift, double cutoff_sq,
@@ -96,9 +97,14 @@ within_cutoff_avx2(const double* x, const double* y, const double* z, std::uint3
     std::uint32_t found = 0;
     std::uint32_t k = 0;
     for (; k + 4 <= count; k += 4) {
-        const __m256d dx = _mm256_add_pd(_mm256_sub_pd(_mm256_loadu_pd(x + k), vax), vvx);
-        const __m256d dy = _mm256_add_pd(_mm256_sub_pd(_mm256_loadu_pd(y + k), vay), vvy);
-        const __m256d dz = _mm256_add_pd(_mm256_sub_pd(_mm256_loadu_pd(z + k), vaz), vvz);
+        __m256d dx = _mm256_sub_pd(_mm256_loadu_pd(x + k), vax);
+        __m256d dy = _mm256_sub_pd(_mm256_loadu_pd(y + k), vay);
+        __m256d dz = _mm256_sub_pd(_mm256_loadu_pd(z + k), vaz);
+        if constexpr (Shifted) {
+            dx = _mm256_add_pd(dx, vvx);
+            dy = _mm256_add_pd(dy, vvy);
+            dz = _mm256_add_pd(dz, vvz);
+        }
         const __m256d d_sq = _mm256_add_pd(
             _mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy)), _mm256_mul_pd(dz, dz));
         const int mask = _mm256_movemask_pd(_mm256_cmp_pd(d_sq, vcut, _CMP_LT_OQ));
@@ -127,7 +133,8 @@ __attribute__((target("avx2"))) std::uint32_t
 within_cutoff_one_avx2(const double* x, const double* y, const double* z, std::uint32_t count,
                        double ax, double ay, double az, const double* shift, double cutoff_sq,
                        std::uint32_t* hits, double* hit_d_sq) {
-    return within_cutoff_avx2(x, y, z, count, ax, ay, az, shift, cutoff_sq, hits, hit_d_sq, 0);
+    return within_cutoff_avx2<true>(x, y, z, count, ax, ay, az, shift, cutoff_sq, hits, hit_d_sq,
+                                    0);
 }
 
 __attribute__((target("avx2"))) std::uint32_t
@@ -135,10 +142,21 @@ within_cutoff_group_avx2(const double* x, const double* y, const double* z, std:
                          const double* ax, const double* ay, const double* az, std::uint32_t group,
                          const double* shift, double cutoff_sq, std::uint32_t* hits,
                          double* hit_d_sq) {
+    // A zero shift (most cell pairs of a large box) adds nothing: (x_b - x_a) + 0 and x_b - x_a
+    // differ at most in the sign of a zero, which d^2 does not see.
+    if (shift[0] == 0 && shift[1] == 0 && shift[2] == 0) {
+        std::uint32_t found = 0;
+        for (std::uint32_t g = 0; g < group; ++g) {
+            found +=
+                within_cutoff_avx2<false>(x, y, z, count, ax[g], ay[g], az[g], shift, cutoff_sq,
+                                          hits + found, hit_d_sq + found, g * kernel_block);
+        }
+        return found;
+    }
     std::uint32_t found = 0;
     for (std::uint32_t g = 0; g < group; ++g) {
-        found += within_cutoff_avx2(x, y, z, count, ax[g], ay[g], az[g], shift, cutoff_sq,
-                                    hits + found, hit_d_sq + found, g * kernel_block);
+        found += within_cutoff_avx2<true>(x, y, z, count, ax[g], ay[g], az[g], shift, cutoff_sq,
+                                          hits + found, hit_d_sq + found, g * kernel_block);
     }
     return found;
 }
@@ -147,6 +165,7 @@ within_cutoff_group_avx2(const double* x, const double* y, const double* z, std:
 // whole (kernel_slack), the last partial group through masked loads instead of a scalar tail
 // (rows hold ~20 atoms on diamond Si, so the tail was a large part). Same operations in the
 // same order as the other versions; the file is compiled without contraction into FMAs.
+template <bool Shifted>
 __attribute__((target("avx512f,avx512vl"))) inline std::uint32_t
 within_cutoff_avx512(const double* x, const double* y, const double* z, std::uint32_t count,
                      double ax, double ay, double az, const double* shift, double cutoff_sq,
@@ -159,12 +178,14 @@ within_cutoff_avx512(const double* x, const double* y, const double* z, std::uin
     std::uint32_t found = 0;
     for (std::uint32_t k = 0; k < count; k += 8) {
         const __mmask8 valid = count - k >= 8 ? __mmask8(0xFF) : __mmask8((1u << (count - k)) - 1);
-        const __m512d dx =
-            _mm512_add_pd(_mm512_sub_pd(_mm512_maskz_loadu_pd(valid, x + k), vax), vvx);
-        const __m512d dy =
-            _mm512_add_pd(_mm512_sub_pd(_mm512_maskz_loadu_pd(valid, y + k), vay), vvy);
-        const __m512d dz =
-            _mm512_add_pd(_mm512_sub_pd(_mm512_maskz_loadu_pd(valid, z + k), vaz), vvz);
+        __m512d dx = _mm512_sub_pd(_mm512_maskz_loadu_pd(valid, x + k), vax);
+        __m512d dy = _mm512_sub_pd(_mm512_maskz_loadu_pd(valid, y + k), vay);
+        __m512d dz = _mm512_sub_pd(_mm512_maskz_loadu_pd(valid, z + k), vaz);
+        if constexpr (Shifted) {
+            dx = _mm512_add_pd(dx, vvx);
+            dy = _mm512_add_pd(dy, vvy);
+            dz = _mm512_add_pd(dz, vvz);
+        }
         const __m512d d_sq = _mm512_add_pd(
             _mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy)), _mm512_mul_pd(dz, dz));
         const __mmask8 hit = _mm512_mask_cmp_pd_mask(valid, d_sq, vcut, _CMP_LT_OQ);
@@ -182,7 +203,8 @@ __attribute__((target("avx512f,avx512vl"))) std::uint32_t
 within_cutoff_one_avx512(const double* x, const double* y, const double* z, std::uint32_t count,
                          double ax, double ay, double az, const double* shift, double cutoff_sq,
                          std::uint32_t* hits, double* hit_d_sq) {
-    return within_cutoff_avx512(x, y, z, count, ax, ay, az, shift, cutoff_sq, hits, hit_d_sq, 0);
+    return within_cutoff_avx512<true>(x, y, z, count, ax, ay, az, shift, cutoff_sq, hits, hit_d_sq,
+                                      0);
 }
 
 __attribute__((target("avx512f,avx512vl"))) std::uint32_t
@@ -190,10 +212,21 @@ within_cutoff_group_avx512(const double* x, const double* y, const double* z, st
                            const double* ax, const double* ay, const double* az,
                            std::uint32_t group, const double* shift, double cutoff_sq,
                            std::uint32_t* hits, double* hit_d_sq) {
+    // A zero shift (most cell pairs of a large box) adds nothing: (x_b - x_a) + 0 and x_b - x_a
+    // differ at most in the sign of a zero, which d^2 does not see.
+    if (shift[0] == 0 && shift[1] == 0 && shift[2] == 0) {
+        std::uint32_t found = 0;
+        for (std::uint32_t g = 0; g < group; ++g) {
+            found +=
+                within_cutoff_avx512<false>(x, y, z, count, ax[g], ay[g], az[g], shift, cutoff_sq,
+                                            hits + found, hit_d_sq + found, g * kernel_block);
+        }
+        return found;
+    }
     std::uint32_t found = 0;
     for (std::uint32_t g = 0; g < group; ++g) {
-        found += within_cutoff_avx512(x, y, z, count, ax[g], ay[g], az[g], shift, cutoff_sq,
-                                      hits + found, hit_d_sq + found, g * kernel_block);
+        found += within_cutoff_avx512<true>(x, y, z, count, ax[g], ay[g], az[g], shift, cutoff_sq,
+                                            hits + found, hit_d_sq + found, g * kernel_block);
     }
     return found;
 }

@@ -101,7 +101,10 @@ TEST(DistanceKernel, GroupKernelsMatchOnePointCallsInOrder) {
             for (std::uint32_t g = 0; g < group; ++g) {
                 ax[g] = u(rng) / 2, ay[g] = u(rng) / 2, az[g] = u(rng) / 2;
             }
-            const double shift[3] = {u(rng), u(rng), u(rng)};
+            // A zero shift on every third trial (the kernels skip adding it).
+            const bool zero = trial % 3 == 0;
+            const double shift[3] = {zero ? 0.0 : u(rng), zero ? -0.0 : u(rng),
+                                     zero ? 0.0 : u(rng)};
             std::vector<std::uint32_t> expected_hits;
             std::vector<double> expected_d;
             for (std::uint32_t g = 0; g < group; ++g) {
