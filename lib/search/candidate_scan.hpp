@@ -10,11 +10,18 @@
 // through the cell shift s has D = x_b + H s - x_a in the search frame and, for the caller,
 // S = s + image_a - image_b.
 //
-// A subset search (NeighborOptions::query) flags the query atoms; the backend is binned for a
-// full list, and the scanner takes as first atom a only query atoms, gathered from each range
-// into the kernel's groups, so the tests are those of the query's own pairs. A half subset list
-// keeps a pair whose other end b is also a query atom only in its canonical orientation (the
-// other orientation is found from b), and every pair with b outside the query, oriented from a.
+// A subset search (NeighborOptions::query) flags the query atoms and takes as first atom of a
+// test only a query atom, gathered from each range into the kernel's groups, so the tests are
+// those of the query's own pairs. A full subset list has the backend binned for a full list.
+// A half subset list has it binned for a half list (each unordered candidate once) and keeps a
+// pair when either end is a query atom: of (range A, range B, s) the query atoms of A are
+// tested against B through s, and, when A holds atoms outside the query, the query atoms of B
+// against A through -s, keeping only the atoms of A outside it. A pair with both ends in the
+// query is oriented as in the half list (turned around, D and d^2 recomputed, when found the
+// other way); a pair with one end in the query is found and tested from that end, so d and D
+// are those of the full list whatever the binning. The own range is scanned from its query
+// atoms against all of it, as a full list, keeping a pair of two query atoms in its canonical
+// orientation only.
 #pragma once
 
 #include <algorithm>
@@ -88,9 +95,11 @@ class CandidateScanner {
           to_caller_(to_caller), reduced_frame_(reduced_frame), sink_(sink), query_(query),
           subset_half_(subset_half) {}
 
-    /// Whether atom a can be the first atom of a pair (false only outside a query subset);
-    /// backends that name single pairs skip the others early.
-    bool wants(std::uint32_t a) const { return query_ == nullptr || query_[a] != 0; }
+    /// Whether atom a can be the first atom of a pair (false only outside the query of a full
+    /// subset list); backends that name single pairs skip the others early.
+    bool wants(std::uint32_t a) const {
+        return query_ == nullptr || subset_half_ || query_[a] != 0;
+    }
 
     ImageShift shift(int sa, int sb, int sc) const {
         const Eigen::Vector3d v = h_.col(0) * sa + h_.col(1) * sb + h_.col(2) * sc;
@@ -102,8 +111,12 @@ class CandidateScanner {
     /// list takes only b > a (then b0 == a0 is required, so each unordered pair is seen once).
     void ranges(std::uint32_t a0, std::uint32_t a1, std::uint32_t b0, std::uint32_t b1,
                 const ImageShift& s, bool own) {
+        if (subset_half_) {
+            half_subset_ranges(a0, a1, b0, b1, s, own);
+            return;
+        }
         if (query_ != nullptr) {
-            subset_ranges(a0, a1, b0, b1, s, own);
+            subset_ranges(a0, a1, b0, b1, s, own ? Scan::own : Scan::plain);
             return;
         }
         tests_ += std::uint64_t(a1 - a0) * std::uint64_t(b1 - b0);
@@ -117,29 +130,30 @@ class CandidateScanner {
             for (std::uint32_t g = 0; g < last - a; ++g) {
                 group[g] = a + g;
             }
-            scan(group, last - a, own && half_ ? a + 1 : b0, b1, s, own);
+            scan(group, last - a, own && half_ ? a + 1 : b0, b1, s, own ? Scan::own : Scan::plain);
         }
     }
 
     /// One candidate pair (a, b) through `s` (backends without contiguous ranges).
     void pair(std::uint32_t a, std::uint32_t b, const ImageShift& s) {
-        if (!wants(a)) {
+        if (query_ != nullptr && query_[a] == 0) {
+            if (subset_half_ && query_[b] != 0) {
+                test(b, a, reversed(s)); // a half subset list: from the query end
+            }
             return;
         }
-        ++tests_;
-        const double dx = x_[b] - (x_[a] - s.vx);
-        const double dy = y_[b] - (y_[a] - s.vy);
-        const double dz = z_[b] - (z_[a] - s.vz);
-        const double d_sq = dx * dx + dy * dy + dz * dz;
-        if (d_sq < cutoff_sq_) {
-            hit(a, b, index_[a], s.s[0] + image_[3 * a], s.s[1] + image_[3 * a + 1],
-                s.s[2] + image_[3 * a + 2], s, dx, dy, dz, d_sq);
-        }
+        test(a, b, s);
     }
 
     /// The pair (a, b) through each of shifts[0, count) (the direct backend: few atoms, many
     /// images). The same test, term for term, as pair() for each shift.
     void images(std::uint32_t a, std::uint32_t b, const ImageShift* shifts, std::size_t count) {
+        if (subset_half_ && query_[a] == 0) {
+            for (std::size_t k = 0; k < count && query_[b] != 0; ++k) {
+                pair(a, b, shifts[k]);
+            }
+            return;
+        }
         if (!wants(a)) {
             return;
         }
@@ -177,10 +191,51 @@ class CandidateScanner {
         int sa[kernel_group], sb[kernel_group], sc[kernel_group];
     };
 
+    // How scan() treats the hits of one range: `own` drops those ranges() does not take in the
+    // own range; `to_others` (a half subset list scanning from the query atoms of the second
+    // range) keeps only those whose second atom is outside the query.
+    enum class Scan { plain, own, to_others };
+
+    // The test of pair() once a first atom is chosen.
+    void test(std::uint32_t a, std::uint32_t b, const ImageShift& s) {
+        ++tests_;
+        const double dx = x_[b] - (x_[a] - s.vx);
+        const double dy = y_[b] - (y_[a] - s.vy);
+        const double dz = z_[b] - (z_[a] - s.vz);
+        const double d_sq = dx * dx + dy * dy + dz * dz;
+        if (d_sq < cutoff_sq_) {
+            hit(a, b, index_[a], s.s[0] + image_[3 * a], s.s[1] + image_[3 * a + 1],
+                s.s[2] + image_[3 * a + 2], s, dx, dy, dz, d_sq);
+        }
+    }
+
+    // -s, bit for bit the shift(-s) of the other cell (H(-s) = -(H s) exactly).
+    static ImageShift reversed(const ImageShift& s) {
+        return ImageShift{{-s.s[0], -s.s[1], -s.s[2]}, -s.vx, -s.vy, -s.vz};
+    }
+
+    // A half subset list's (range, range, shift) triple (see the comment atop this file). The
+    // own range (b0 == a0 in a half list) is the own cell scanned as a full list, then the rest
+    // of the run as an ordinary triple.
+    void half_subset_ranges(std::uint32_t a0, std::uint32_t a1, std::uint32_t b0, std::uint32_t b1,
+                            const ImageShift& s, bool own) {
+        if (own) {
+            subset_ranges(a0, a1, a0, a1, s, Scan::own);
+            if (a1 < b1) {
+                half_subset_ranges(a0, a1, a1, b1, s, false);
+            }
+            return;
+        }
+        if (subset_ranges(a0, a1, b0, b1, s, Scan::plain) < a1 - a0) {
+            subset_ranges(b0, b1, a0, a1, reversed(s), Scan::to_others);
+        }
+    }
+
     // The query atoms of [a0, a1) as first atoms, in groups of up to kernel_group, against
-    // [b0, b1) through s (a full scan: the scanner's half_ is off in a subset search).
-    void subset_ranges(std::uint32_t a0, std::uint32_t a1, std::uint32_t b0, std::uint32_t b1,
-                       const ImageShift& s, bool own) {
+    // [b0, b1) through s (with Scan::own every b but a itself). Returns how many there were.
+    std::uint32_t subset_ranges(std::uint32_t a0, std::uint32_t a1, std::uint32_t b0,
+                                std::uint32_t b1, const ImageShift& s, Scan how) {
+        std::uint32_t queried = 0;
         std::uint32_t group[kernel_group];
         std::uint32_t count = 0;
         for (std::uint32_t a = a0; a < a1; ++a) {
@@ -190,20 +245,23 @@ class CandidateScanner {
             group[count++] = a;
             if (count == kernel_group) {
                 tests_ += std::uint64_t(count) * std::uint64_t(b1 - b0);
-                scan(group, count, b0, b1, s, own);
+                scan(group, count, b0, b1, s, how);
+                queried += count;
                 count = 0;
             }
         }
         if (count > 0) {
             tests_ += std::uint64_t(count) * std::uint64_t(b1 - b0);
-            scan(group, count, b0, b1, s, own);
+            scan(group, count, b0, b1, s, how);
+            queried += count;
         }
+        return queried;
     }
 
     // Atoms group[0, count) (at most kernel_group, ascending) against b in [from, to) through
-    // s, one kernel block at a time; with `own`, only the b that ranges() takes for each a.
+    // s, one kernel block at a time, the hits filtered as `how` says.
     void scan(const std::uint32_t* atoms, std::uint32_t group, std::uint32_t from, std::uint32_t to,
-              const ImageShift& s, bool own) {
+              const ImageShift& s, Scan how) {
         if (from >= to) {
             return;
         }
@@ -226,11 +284,13 @@ class CandidateScanner {
             std::uint32_t found =
                 within_cutoff_group(x_ + start, y_ + start, z_ + start, count, side.x, side.y,
                                     side.z, group, cutoff_sq_, hits, hit_d_sq);
-            if (own) {
+            if (how == Scan::own) {
                 found = drop_others(side, start, hits, hit_d_sq, found);
-            }
-            if (subset_half_) {
-                found = drop_mirrored(side, start, hits, hit_d_sq, found);
+                if (subset_half_) {
+                    found = drop_mirrored(side, start, hits, hit_d_sq, found);
+                }
+            } else if (how == Scan::to_others) {
+                found = drop_queried(start, hits, hit_d_sq, found);
             }
             if (found == 0) {
                 continue;
@@ -246,16 +306,30 @@ class CandidateScanner {
     }
 
     // Drops the own range's hits (a, b) that ranges() does not take: b == a, and b < a in a
-    // half list. Returns how many remain (in order).
+    // half list (not a subset one, which scans its own range as a full list). Returns how many
+    // remain (in order).
     std::uint32_t drop_others(const Side& side, std::uint32_t start, std::uint32_t* hits,
                               double* d_sq, std::uint32_t found) const {
+        const bool later = half_ && query_ == nullptr;
         std::uint32_t kept = 0;
         for (std::uint32_t h = 0; h < found; ++h) {
             const std::uint32_t a = side.a[hits[h] / kernel_block];
             const std::uint32_t b = start + hits[h] % kernel_block;
             hits[kept] = hits[h];
             d_sq[kept] = d_sq[h];
-            kept += (half_ ? b > a : b != a) ? 1u : 0u;
+            kept += (later ? b > a : b != a) ? 1u : 0u;
+        }
+        return kept;
+    }
+
+    // Drops the hits (a, b) with b a query atom (Scan::to_others: found from a already).
+    std::uint32_t drop_queried(std::uint32_t start, std::uint32_t* hits, double* d_sq,
+                               std::uint32_t found) const {
+        std::uint32_t kept = 0;
+        for (std::uint32_t h = 0; h < found; ++h) {
+            hits[kept] = hits[h];
+            d_sq[kept] = d_sq[h];
+            kept += query_[start + hits[h] % kernel_block] == 0 ? 1u : 0u;
         }
         return kept;
     }
@@ -329,7 +403,7 @@ class CandidateScanner {
             const int sa = side.sa[g] - image_[3 * b];
             const int sb = side.sb[g] - image_[3 * b + 1];
             const int sc = side.sc[g] - image_[3 * b + 2];
-            const bool other = flip(i, j, sa, sb, sc);
+            const bool other = orients(b) && flip(i, j, sa, sb, sc);
             const int sign = other ? -1 : 1;
             out.i[h] = other ? j : i;
             out.j[h] = other ? i : j;
@@ -418,7 +492,7 @@ class CandidateScanner {
     // scan first (the contract: identical d and D whatever the backend); the test is redone on
     // it. Then a variable cutoff decides.
     bool counts(std::uint32_t a, std::uint32_t b, const ImageShift& s, Hit& p) const {
-        if (half_ && flip(p.i, p.j, p.sa, p.sb, p.sc)) {
+        if (half_ && orients(b) && flip(p.i, p.j, p.sa, p.sb, p.sc)) {
             std::swap(p.i, p.j);
             p.sa = -p.sa;
             p.sb = -p.sb;
@@ -444,13 +518,14 @@ class CandidateScanner {
     void hit(std::uint32_t a, std::uint32_t b, std::uint32_t i, int sa_a, int sb_a, int sc_a,
              const ImageShift& s, double dx, double dy, double dz, double d_sq) {
         Hit p = make_hit(b, i, sa_a, sb_a, sc_a, dx, dy, dz, d_sq);
-        if (subset_half_ && query_[b] != 0 && flip(p.i, p.j, p.sa, p.sb, p.sc)) {
-            return; // kept when found from b
-        }
         if (counts(a, b, s, p)) {
             sink_.add(p.i, p.j, p.sa, p.sb, p.sc, p.dx, p.dy, p.dz, p.d_sq);
         }
     }
+
+    // Whether a half list turns a hit (a, b) into its canonical orientation: always, but in a
+    // subset list only when b is a query atom (a is one; otherwise the pair stays as found).
+    bool orients(std::uint32_t b) const { return query_ == nullptr || query_[b] != 0; }
 
     // Half lists keep (i, j, S) with i < j, or i == j with S lexicographically positive in the
     // caller's frame; true when the found orientation is the other one (keep_oriented()
