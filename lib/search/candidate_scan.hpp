@@ -226,16 +226,25 @@ class CandidateScanner {
             }
             return;
         }
-        if (subset_ranges(a0, a1, b0, b1, s, Scan::plain) < a1 - a0) {
-            subset_ranges(b0, b1, a0, a1, reversed(s), Scan::to_others);
+        subset_ranges(a0, a1, b0, b1, s, Scan::plain);
+        // From B only against the span of A's atoms outside the query (where a cell holds the
+        // query atoms first, as in a stable sort of a query of the first indices, just those).
+        std::uint32_t first = a0, end = a1;
+        while (first < end && query_[first] != 0) {
+            ++first;
+        }
+        while (end > first && query_[end - 1] != 0) {
+            --end;
+        }
+        if (first < end) {
+            subset_ranges(b0, b1, first, end, reversed(s), Scan::to_others);
         }
     }
 
     // The query atoms of [a0, a1) as first atoms, in groups of up to kernel_group, against
-    // [b0, b1) through s (with Scan::own every b but a itself). Returns how many there were.
-    std::uint32_t subset_ranges(std::uint32_t a0, std::uint32_t a1, std::uint32_t b0,
-                                std::uint32_t b1, const ImageShift& s, Scan how) {
-        std::uint32_t queried = 0;
+    // [b0, b1) through s (with Scan::own every b but a itself).
+    void subset_ranges(std::uint32_t a0, std::uint32_t a1, std::uint32_t b0, std::uint32_t b1,
+                       const ImageShift& s, Scan how) {
         std::uint32_t group[kernel_group];
         std::uint32_t count = 0;
         for (std::uint32_t a = a0; a < a1; ++a) {
@@ -246,16 +255,13 @@ class CandidateScanner {
             if (count == kernel_group) {
                 tests_ += std::uint64_t(count) * std::uint64_t(b1 - b0);
                 scan(group, count, b0, b1, s, how);
-                queried += count;
                 count = 0;
             }
         }
         if (count > 0) {
             tests_ += std::uint64_t(count) * std::uint64_t(b1 - b0);
             scan(group, count, b0, b1, s, how);
-            queried += count;
         }
-        return queried;
     }
 
     // Atoms group[0, count) (at most kernel_group, ascending) against b in [from, to) through
@@ -297,10 +303,14 @@ class CandidateScanner {
             }
             if (!rule_.uniform()) {
                 keep_some(side, start, hits, hit_d_sq, found, s);
-            } else if (!half_) {
+            } else if (!half_ || !may_turn(how, start, hits, found)) {
                 keep_all(side, start, hits, hit_d_sq, found);
             } else {
-                keep_oriented(side, start, hits, hit_d_sq, found, s);
+                if (query_ == nullptr) {
+                    keep_oriented<false>(side, start, hits, hit_d_sq, found, s);
+                } else {
+                    keep_oriented<true>(side, start, hits, hit_d_sq, found, s);
+                }
             }
         }
     }
@@ -320,6 +330,25 @@ class CandidateScanner {
             kept += (later ? b > a : b != a) ? 1u : 0u;
         }
         return kept;
+    }
+
+    // Whether a half list may turn a hit of the block around: a subset list turns only pairs of
+    // two query atoms, which a scan from the other range or one of the own range (canonical
+    // already) does not keep.
+    bool may_turn(Scan how, std::uint32_t start, const std::uint32_t* hits,
+                  std::uint32_t found) const {
+        if (query_ == nullptr) {
+            return true;
+        }
+        if (how != Scan::plain) {
+            return false;
+        }
+        for (std::uint32_t h = 0; h < found; ++h) {
+            if (query_[start + hits[h] % kernel_block] != 0) {
+                return true;
+            }
+        }
+        return false;
     }
 
     // Drops the hits (a, b) with b a query atom (Scan::to_others: found from a already).
@@ -387,6 +416,8 @@ class CandidateScanner {
     // around; only those have D and d^2 computed again, in their own orientation (see counts()).
     // In the rare block where that second test fails, keep_some() redoes the block (it reads
     // d^2 only of the pairs not turned around, which this leaves as they were).
+    // (Subset: a subset list's, which turns only pairs of two query atoms, see orients().)
+    template <bool Subset>
     void keep_oriented(const Side& side, std::uint32_t start, const std::uint32_t* hits,
                        double* d_sq, std::uint32_t found, const ImageShift& s) {
         const PairSink::Slots out = sink_.claim(found);
@@ -403,7 +434,7 @@ class CandidateScanner {
             const int sa = side.sa[g] - image_[3 * b];
             const int sb = side.sb[g] - image_[3 * b + 1];
             const int sc = side.sc[g] - image_[3 * b + 2];
-            const bool other = orients(b) && flip(i, j, sa, sb, sc);
+            const bool other = (!Subset || query_[b] != 0) && flip(i, j, sa, sb, sc);
             const int sign = other ? -1 : 1;
             out.i[h] = other ? j : i;
             out.j[h] = other ? i : j;
