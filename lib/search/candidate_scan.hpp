@@ -15,11 +15,18 @@
 // (i, j, S) alone, whichever atom a backend scans first, and a half list turns a pair into its
 // canonical orientation by negating D, computing nothing again.
 //
-// A subset search (NeighborOptions::query) flags the query atoms; the backend is binned for a
-// full list, and the scanner takes as first atom a only query atoms, gathered from each range
-// into the kernel's groups, so the tests are those of the query's own pairs. A half subset list
-// keeps a pair whose other end b is also a query atom only in its canonical orientation (the
-// other orientation is found from b), and every pair with b outside the query, oriented from a.
+// A subset search (NeighborOptions::query) flags the query atoms and takes as first atom of a
+// test only a query atom, gathered from each range into the kernel's groups, so the tests are
+// those of the query's own pairs. A full subset list has the backend binned for a full list.
+// A half subset list has it binned for a half list (each unordered candidate once) and keeps a
+// pair when either end is a query atom: of (range A, range B, s) the query atoms of A are
+// tested against B through s, then the query atoms of B against A through -s, over the span of
+// A's atoms outside the query only (where a cell lists its query atoms first, as the stable
+// cell sort does for a query of the first indices, just those atoms), keeping the hits outside
+// the query. A pair of two query atoms takes its canonical orientation, as in the half list; a
+// pair with one end in the query is oriented from that end. The own range is scanned from its
+// query atoms against all of it, as a full list, keeping a pair of two query atoms in its
+// canonical orientation only.
 #pragma once
 
 #include <algorithm>
@@ -93,9 +100,11 @@ class CandidateScanner {
           to_caller_(to_caller), reduced_frame_(reduced_frame), sink_(sink), query_(query),
           subset_half_(subset_half) {}
 
-    /// Whether atom a can be the first atom of a pair (false only outside a query subset);
-    /// backends that name single pairs skip the others early.
-    bool wants(std::uint32_t a) const { return query_ == nullptr || query_[a] != 0; }
+    /// Whether atom a can be the first atom of a pair (false only outside the query of a full
+    /// subset list); backends that name single pairs skip the others early.
+    bool wants(std::uint32_t a) const {
+        return query_ == nullptr || subset_half_ || query_[a] != 0;
+    }
 
     ImageShift shift(int sa, int sb, int sc) const {
         const Eigen::Vector3d v = h_.col(0) * sa + h_.col(1) * sb + h_.col(2) * sc;
@@ -107,8 +116,12 @@ class CandidateScanner {
     /// list takes only b > a (then b0 == a0 is required, so each unordered pair is seen once).
     void ranges(std::uint32_t a0, std::uint32_t a1, std::uint32_t b0, std::uint32_t b1,
                 const ImageShift& s, bool own) {
+        if (subset_half_) {
+            half_subset_ranges(a0, a1, b0, b1, s, own);
+            return;
+        }
         if (query_ != nullptr) {
-            subset_ranges(a0, a1, b0, b1, s, own);
+            subset_ranges(a0, a1, b0, b1, s, own ? Scan::own : Scan::plain);
             return;
         }
         tests_ += std::uint64_t(a1 - a0) * std::uint64_t(b1 - b0);
@@ -122,29 +135,30 @@ class CandidateScanner {
             for (std::uint32_t g = 0; g < last - a; ++g) {
                 group[g] = a + g;
             }
-            scan(group, last - a, own && half_ ? a + 1 : b0, b1, s, own);
+            scan(group, last - a, own && half_ ? a + 1 : b0, b1, s, own ? Scan::own : Scan::plain);
         }
     }
 
     /// One candidate pair (a, b) through `s` (backends without contiguous ranges).
     void pair(std::uint32_t a, std::uint32_t b, const ImageShift& s) {
-        if (!wants(a)) {
+        if (query_ != nullptr && query_[a] == 0) {
+            if (subset_half_ && query_[b] != 0) {
+                test(b, a, reversed(s)); // a half subset list: from the query end
+            }
             return;
         }
-        ++tests_;
-        const double dx = (x_[b] - x_[a]) + s.v[0];
-        const double dy = (y_[b] - y_[a]) + s.v[1];
-        const double dz = (z_[b] - z_[a]) + s.v[2];
-        const double d_sq = dx * dx + dy * dy + dz * dz;
-        if (d_sq < cutoff_sq_) {
-            hit(b, index_[a], s.s[0] + image_[3 * a], s.s[1] + image_[3 * a + 1],
-                s.s[2] + image_[3 * a + 2], dx, dy, dz, d_sq);
-        }
+        test(a, b, s);
     }
 
     /// The pair (a, b) through each of shifts[0, count) (the direct backend: few atoms, many
     /// images). The same test, term for term, as pair() for each shift.
     void images(std::uint32_t a, std::uint32_t b, const ImageShift* shifts, std::size_t count) {
+        if (subset_half_ && query_[a] == 0) {
+            for (std::size_t k = 0; k < count && query_[b] != 0; ++k) {
+                pair(a, b, shifts[k]);
+            }
+            return;
+        }
         if (!wants(a)) {
             return;
         }
@@ -182,10 +196,58 @@ class CandidateScanner {
         int sa[kernel_group], sb[kernel_group], sc[kernel_group];
     };
 
+    // How scan() treats the hits of one range: `own` drops those ranges() does not take in the
+    // own range; `to_others` (a half subset list scanning from the query atoms of the second
+    // range) keeps only those whose second atom is outside the query.
+    enum class Scan { plain, own, to_others };
+
+    // The test of pair() once a first atom is chosen.
+    void test(std::uint32_t a, std::uint32_t b, const ImageShift& s) {
+        ++tests_;
+        const double dx = (x_[b] - x_[a]) + s.v[0];
+        const double dy = (y_[b] - y_[a]) + s.v[1];
+        const double dz = (z_[b] - z_[a]) + s.v[2];
+        const double d_sq = dx * dx + dy * dy + dz * dz;
+        if (d_sq < cutoff_sq_) {
+            hit(b, index_[a], s.s[0] + image_[3 * a], s.s[1] + image_[3 * a + 1],
+                s.s[2] + image_[3 * a + 2], dx, dy, dz, d_sq);
+        }
+    }
+
+    // -s (T of -s is exactly -T, see above).
+    static ImageShift reversed(const ImageShift& s) {
+        return ImageShift{{-s.s[0], -s.s[1], -s.s[2]}, {-s.v[0], -s.v[1], -s.v[2]}};
+    }
+
+    // A half subset list's (range, range, shift) triple (see the comment atop this file). The
+    // own range (b0 == a0 in a half list) is the own cell scanned as a full list, then the rest
+    // of the run as an ordinary triple.
+    void half_subset_ranges(std::uint32_t a0, std::uint32_t a1, std::uint32_t b0, std::uint32_t b1,
+                            const ImageShift& s, bool own) {
+        if (own) {
+            subset_ranges(a0, a1, a0, a1, s, Scan::own);
+            if (a1 < b1) {
+                half_subset_ranges(a0, a1, a1, b1, s, false);
+            }
+            return;
+        }
+        subset_ranges(a0, a1, b0, b1, s, Scan::plain);
+        std::uint32_t first = a0, end = a1; // the span of A's atoms outside the query
+        while (first < end && query_[first] != 0) {
+            ++first;
+        }
+        while (end > first && query_[end - 1] != 0) {
+            --end;
+        }
+        if (first < end) {
+            subset_ranges(b0, b1, first, end, reversed(s), Scan::to_others);
+        }
+    }
+
     // The query atoms of [a0, a1) as first atoms, in groups of up to kernel_group, against
-    // [b0, b1) through s (a full scan: the scanner's half_ is off in a subset search).
+    // [b0, b1) through s (with Scan::own every b but a itself).
     void subset_ranges(std::uint32_t a0, std::uint32_t a1, std::uint32_t b0, std::uint32_t b1,
-                       const ImageShift& s, bool own) {
+                       const ImageShift& s, Scan how) {
         std::uint32_t group[kernel_group];
         std::uint32_t count = 0;
         for (std::uint32_t a = a0; a < a1; ++a) {
@@ -195,20 +257,20 @@ class CandidateScanner {
             group[count++] = a;
             if (count == kernel_group) {
                 tests_ += std::uint64_t(count) * std::uint64_t(b1 - b0);
-                scan(group, count, b0, b1, s, own);
+                scan(group, count, b0, b1, s, how);
                 count = 0;
             }
         }
         if (count > 0) {
             tests_ += std::uint64_t(count) * std::uint64_t(b1 - b0);
-            scan(group, count, b0, b1, s, own);
+            scan(group, count, b0, b1, s, how);
         }
     }
 
     // Atoms group[0, count) (at most kernel_group, ascending) against b in [from, to) through
-    // s, one kernel block at a time; with `own`, only the b that ranges() takes for each a.
+    // s, one kernel block at a time, the hits filtered as `how` says.
     void scan(const std::uint32_t* atoms, std::uint32_t group, std::uint32_t from, std::uint32_t to,
-              const ImageShift& s, bool own) {
+              const ImageShift& s, Scan how) {
         if (from >= to) {
             return;
         }
@@ -231,36 +293,73 @@ class CandidateScanner {
             std::uint32_t found =
                 within_cutoff_group(x_ + start, y_ + start, z_ + start, count, side.x, side.y,
                                     side.z, group, s.v, cutoff_sq_, hits, hit_d_sq);
-            if (own) {
+            if (how == Scan::own) {
                 found = drop_others(side, start, hits, hit_d_sq, found);
-            }
-            if (subset_half_) {
-                found = drop_mirrored(side, start, hits, hit_d_sq, found);
+                if (subset_half_) {
+                    found = drop_mirrored(side, start, hits, hit_d_sq, found);
+                }
+            } else if (how == Scan::to_others) {
+                found = drop_queried(start, hits, hit_d_sq, found);
             }
             if (found == 0) {
                 continue;
             }
             if (!rule_.uniform()) {
                 keep_some(side, start, hits, hit_d_sq, found, s);
-            } else if (!half_) {
+            } else if (!half_ || !may_turn(how, start, hits, found)) {
                 keep_all(side, start, hits, hit_d_sq, found, s);
+            } else if (query_ == nullptr) {
+                keep_oriented<false>(side, start, hits, hit_d_sq, found, s);
             } else {
-                keep_oriented(side, start, hits, hit_d_sq, found, s);
+                keep_oriented<true>(side, start, hits, hit_d_sq, found, s);
             }
         }
     }
 
     // Drops the own range's hits (a, b) that ranges() does not take: b == a, and b < a in a
-    // half list. Returns how many remain (in order).
+    // half list (not a subset one, which scans its own range as a full list). Returns how many
+    // remain (in order).
     std::uint32_t drop_others(const Side& side, std::uint32_t start, std::uint32_t* hits,
                               double* d_sq, std::uint32_t found) const {
+        const bool later = half_ && query_ == nullptr;
         std::uint32_t kept = 0;
         for (std::uint32_t h = 0; h < found; ++h) {
             const std::uint32_t a = side.a[hits[h] / kernel_block];
             const std::uint32_t b = start + hits[h] % kernel_block;
             hits[kept] = hits[h];
             d_sq[kept] = d_sq[h];
-            kept += (half_ ? b > a : b != a) ? 1u : 0u;
+            kept += (later ? b > a : b != a) ? 1u : 0u;
+        }
+        return kept;
+    }
+
+    // Whether a half list may turn a hit of the block around: a subset list turns only pairs of
+    // two query atoms, which a scan from the other range or one of the own range (canonical
+    // already) does not keep.
+    bool may_turn(Scan how, std::uint32_t start, const std::uint32_t* hits,
+                  std::uint32_t found) const {
+        if (query_ == nullptr) {
+            return true;
+        }
+        if (how != Scan::plain) {
+            return false;
+        }
+        for (std::uint32_t h = 0; h < found; ++h) {
+            if (query_[start + hits[h] % kernel_block] != 0) {
+                return true;
+            }
+        }
+        return false;
+    }
+
+    // Drops the hits (a, b) with b a query atom (Scan::to_others: found from a already).
+    std::uint32_t drop_queried(std::uint32_t start, std::uint32_t* hits, double* d_sq,
+                               std::uint32_t found) const {
+        std::uint32_t kept = 0;
+        for (std::uint32_t h = 0; h < found; ++h) {
+            hits[kept] = hits[h];
+            d_sq[kept] = d_sq[h];
+            kept += query_[start + hits[h] % kernel_block] == 0 ? 1u : 0u;
         }
         return kept;
     }
@@ -301,7 +400,7 @@ class CandidateScanner {
                 p.dy = (y_[b] - side.y[g]) + s.v[1];
                 p.dz = (z_[b] - side.z[g]) + s.v[2];
             }
-            if (!counts(p)) {
+            if (!counts(p, b)) {
                 continue;
             }
             PairSink::put(out, kept, p.i, p.j, p.sa, p.sb, p.sc, p.dx + 0.0, p.dy + 0.0,
@@ -316,6 +415,8 @@ class CandidateScanner {
     // orientation. Which orientation a pair takes is a coin toss (caller indices against the
     // backend's order), so i, j, S and D of either are written without a branch: a pair turned
     // around has i and j swapped, -S and -D (exact, see above) and the same d.
+    // (Subset: a subset list's, which turns only pairs of two query atoms, see orients().)
+    template <bool Subset>
     void keep_oriented(const Side& side, std::uint32_t start, const std::uint32_t* hits,
                        const double* d_sq, std::uint32_t found, const ImageShift& s) {
         const PairSink::Slots out = sink_.claim(found);
@@ -327,7 +428,7 @@ class CandidateScanner {
             const int sa = side.sa[g] - image_[3 * b];
             const int sb = side.sb[g] - image_[3 * b + 1];
             const int sc = side.sc[g] - image_[3 * b + 2];
-            const bool other = flip(i, j, sa, sb, sc);
+            const bool other = (!Subset || query_[b] != 0) && flip(i, j, sa, sb, sc);
             out.i[h] = other ? j : i;
             out.j[h] = other ? i : j;
             sign[h] = other ? -1.0 : 1.0;
@@ -407,9 +508,9 @@ class CandidateScanner {
 
     // Whether hit p counts, oriented for a half list: a half list reports (j, i, -S) with -D
     // when that is the canonical orientation (exactly what the other orientation's scan
-    // computes, see above). Then a variable cutoff decides.
-    bool counts(Hit& p) const {
-        if (half_ && flip(p.i, p.j, p.sa, p.sb, p.sc)) {
+    // computes, see above). Then a variable cutoff decides. (b: the second atom, see orients().)
+    bool counts(Hit& p, std::uint32_t b) const {
+        if (half_ && orients(b) && flip(p.i, p.j, p.sa, p.sb, p.sc)) {
             std::swap(p.i, p.j);
             p.sa = -p.sa;
             p.sb = -p.sb;
@@ -425,13 +526,14 @@ class CandidateScanner {
     void hit(std::uint32_t b, std::uint32_t i, int sa_a, int sb_a, int sc_a, double dx, double dy,
              double dz, double d_sq) {
         Hit p = make_hit(b, i, sa_a, sb_a, sc_a, dx, dy, dz, d_sq);
-        if (subset_half_ && query_[b] != 0 && flip(p.i, p.j, p.sa, p.sb, p.sc)) {
-            return; // kept when found from b
-        }
-        if (counts(p)) {
+        if (counts(p, b)) {
             sink_.add(p.i, p.j, p.sa, p.sb, p.sc, p.dx + 0.0, p.dy + 0.0, p.dz + 0.0, p.d_sq);
         }
     }
+
+    // Whether a half list turns a hit (a, b) into its canonical orientation: always, but in a
+    // subset list only when b is a query atom (a is one; otherwise the pair stays as found).
+    bool orients(std::uint32_t b) const { return query_ == nullptr || query_[b] != 0; }
 
     // Half lists keep (i, j, S) with i < j, or i == j with S lexicographically positive in the
     // caller's frame; true when the found orientation is the other one.

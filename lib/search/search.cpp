@@ -71,12 +71,12 @@ void NeighborSearch::build(const Box& caller_box, PointsView positions,
     // grid refuses and the other backends accept.
     s.search_radius = std::min(cutoff * (1 + search_margin), std::numeric_limits<double>::max());
 
-    // A subset search bins the atoms for a full list and scans from the query atoms only.
+    // A subset search scans from the query atoms only (candidate_scan.hpp); its pairs are
+    // estimated as the query's share of the full list's.
     std::vector<std::uint8_t> query = detail::query_flags(options, n);
     const bool subset = !query.empty();
     const std::size_t query_size = subset ? options.query->size() : n;
-    NeighborOptions binning = options;
-    binning.half = options.half && !subset;
+    const NeighborOptions& binning = options;
 
     detail::WrappedPositions wrapped;
     detail::wrap_positions(box, positions, threads, wrapped);
@@ -87,9 +87,9 @@ void NeighborSearch::build(const Box& caller_box, PointsView positions,
         return;
     }
     s.cutoff_sq = detail::strict_threshold_sq(cutoff);
-    s.estimated_pairs =
-        detail::estimated_system_pairs(box, n, wrapped.lower, wrapped.upper, cutoff, binning.half) *
-        (double(query_size) / double(n));
+    s.estimated_pairs = detail::estimated_system_pairs(box, n, wrapped.lower, wrapped.upper, cutoff,
+                                                       options.half && !subset) *
+                        (double(query_size) / double(n));
     detail::ListLimits(options, n).check_estimate(s.estimated_pairs, cutoff);
 
     const SearchBackend kind =

@@ -28,7 +28,7 @@ struct SearchState {
     CutoffRule rule;
     AtomTable atoms;
     // A subset search (NeighborOptions::query): 1 per query atom, in the backend's order (the
-    // AtomTable's); empty for the ordinary search. The backend is then binned for a full list.
+    // AtomTable's); empty for the ordinary search.
     std::vector<std::uint8_t> query;
     // The backend of the last build, null when no pair can count (all radii zero, ...).
     Backend* backend = nullptr;
@@ -37,9 +37,8 @@ struct SearchState {
     /// A scanner of this search's atoms that hands its pairs to `sink`.
     CandidateScanner scanner(PairSink& sink) const {
         const bool subset = !query.empty();
-        return CandidateScanner(atoms, h, cutoff_sq, rule, options.half && !subset, to_caller,
-                                reduced_frame, sink, subset ? query.data() : nullptr,
-                                subset && options.half);
+        return CandidateScanner(atoms, h, cutoff_sq, rule, options.half, to_caller, reduced_frame,
+                                sink, subset ? query.data() : nullptr, subset && options.half);
     }
 };
 

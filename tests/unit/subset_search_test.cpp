@@ -160,7 +160,8 @@ TEST(SubsetSearch, SortedOffsetsCoverEveryPoint) {
 
 TEST(SubsetSearch, TestsFollowTheQueryNotEveryPoint) {
     // 4000 uniform points, a query of 1 in 10: the distance tests of the subset search (the
-    // work model's count) are about a tenth of the full search's, on every grid backend.
+    // work model's count) are about a tenth of the full search's, on every grid backend; a
+    // query of the atoms of one half of the box, about a quarter.
     std::mt19937_64 rng(42);
     std::uniform_real_distribution<double> unit(0, 20);
     std::vector<Eigen::Vector3d> x(4000);
@@ -171,6 +172,12 @@ TEST(SubsetSearch, TestsFollowTheQueryNotEveryPoint) {
     std::vector<std::uint32_t> query;
     for (std::uint32_t k = 0; k < x.size(); k += 10) {
         query.push_back(k);
+    }
+    std::vector<std::uint32_t> half_box;
+    for (std::uint32_t k = 0; k < x.size(); ++k) {
+        if (x[k].x() < 10) {
+            half_box.push_back(k);
+        }
     }
     for (SearchBackend backend : {SearchBackend::dense, SearchBackend::linked, SearchBackend::hash,
                                   SearchBackend::octree}) {
@@ -190,6 +197,12 @@ TEST(SubsetSearch, TestsFollowTheQueryNotEveryPoint) {
         const double subset = tests(o);
         EXPECT_LT(subset, 0.15 * full);
         EXPECT_GT(subset, 0.05 * full);
+        // The atoms of one half of the box (as a rank's own atoms): a half subset list scans the
+        // half stencil, so about a quarter of the full search's tests, not a half.
+        o.query = half_box;
+        const double region = tests(o);
+        EXPECT_LT(region, 0.33 * full);
+        EXPECT_GT(region, 0.2 * full);
     }
 }
 
