@@ -76,7 +76,6 @@ void NeighborSearch::build(const Box& caller_box, PointsView positions,
     std::vector<std::uint8_t> query = detail::query_flags(options, n);
     const bool subset = !query.empty();
     const std::size_t query_size = subset ? options.query->size() : n;
-    const NeighborOptions& binning = options;
 
     detail::WrappedPositions wrapped;
     detail::wrap_positions(box, positions, threads, wrapped);
@@ -95,12 +94,12 @@ void NeighborSearch::build(const Box& caller_box, PointsView positions,
     const SearchBackend kind =
         options.backend == SearchBackend::automatic
             ? detail::automatic_backend(box, wrapped.fractional, wrapped.lower, wrapped.upper,
-                                        s.search_radius, binning)
+                                        s.search_radius, options)
             : options.backend;
     s.backend = &s.pool.get(kind);
     std::vector<std::uint32_t> order;
     s.backend->bin(detail::BinningInput{box, wrapped.fractional, wrapped.lower, wrapped.upper,
-                                        s.search_radius, binning, threads,
+                                        s.search_radius, options, threads,
                                         detail::cell_cap(options, n)},
                    order);
     detail::fill_atom_table(s.h, positions, wrapped.image, std::move(order), threads, s.atoms);
