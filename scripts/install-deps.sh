@@ -6,6 +6,7 @@ set -euo pipefail
 
 packages=(
     cmake g++ make
+    ccache                     # scripts/test.sh: rebuilds compile only what changed
     libeigen3-dev              # tricell::core
     googletest libgtest-dev libgmock-dev
     libbenchmark-dev

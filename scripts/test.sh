@@ -11,6 +11,14 @@ cd "$(dirname "$0")/.."
 jobs="${TRICELL_JOBS:-2}"
 bash scripts/install-deps.sh
 
+# Every configure below (and the nested ones: pip's build, the consumer projects) compiles
+# through ccache, with paths taken relative to the repository root, so a second run on the same
+# machine, from any clone, recompiles only what changed. TRICELL_CCACHE=0 turns it off.
+if [ "${TRICELL_CCACHE:-1}" = 1 ] && command -v ccache >/dev/null; then
+    export CMAKE_CXX_COMPILER_LAUNCHER=ccache CMAKE_C_COMPILER_LAUNCHER=ccache
+    export CCACHE_BASEDIR="$PWD" CCACHE_NOHASHDIR=1
+fi
+
 echo "== format check"
 bash scripts/format-check.sh
 
