@@ -277,13 +277,15 @@ int main(int argc, char** argv) {
     std::uint32_t hits[block + tricell::detail::kernel_slack];
     double hit_d_sq[block + tricell::detail::kernel_slack];
     std::uint64_t found = 0;
+    const double shift[3] = {0.5, -0.5, 0.25};
     const double test_s = median_time(
         [&] {
             for (std::size_t c = 0; c < calls; ++c) {
                 const std::size_t b = (c % blocks) * block;
                 const double q = 1e-3 * double(c % 7);
-                found += tricell::detail::within_cutoff(x.data() + b, y.data() + b, z.data() + b,
-                                                        block, q, -q, q, radius_sq, hits, hit_d_sq);
+                found +=
+                    tricell::detail::within_cutoff(x.data() + b, y.data() + b, z.data() + b, block,
+                                                   q, -q, q, shift, radius_sq, hits, hit_d_sq);
             }
         },
         repeat);

@@ -1,5 +1,6 @@
 #include "tricell/verlet.hpp"
 
+#include "detail/candidate_radius.hpp"
 #include "search/distance_kernel.hpp"
 
 #include <algorithm>
@@ -10,16 +11,6 @@
 #include "tricell/error.hpp"
 
 namespace tricell {
-
-namespace {
-
-constexpr double pi = 3.14159265358979323846;
-// Candidates are searched this much beyond r_l (relative to r_l, plus relative to the size of
-// the coordinates), so that rounding in the search, which works on wrapped positions, and in
-// the displacements can never drop a candidate the rule relies on.
-constexpr double candidate_margin = 1e-10;
-constexpr double coordinate_margin = 1e-13;
-} // namespace
 
 void VerletOptions::validate() const {
     if (neighbors.variable_cutoff()) {
@@ -111,12 +102,7 @@ void VerletList::set_query(std::optional<std::vector<std::uint32_t>> query) {
 void VerletList::build(const Box& box, PointsView positions) {
     tracker_.reset();
     NeighborOptions search_options = options_.neighbors;
-    double scale = box.matrix().cwiseAbs().maxCoeff();
-    for (std::size_t i = 0; i < positions.size(); ++i) {
-        const double r = Eigen::Vector3d(positions[i]).cwiseAbs().maxCoeff();
-        scale = std::isfinite(r) ? std::max(scale, r) : scale; // the search reports non-finite
-    }
-    search_options.cutoff = list_radius() * (1 + candidate_margin) + coordinate_margin * scale;
+    search_options.cutoff = detail::candidate_radius(list_radius(), box, positions);
     search_options.quantities.shifts = true;
     search_options.quantities.distances = false;
     search_options.quantities.vectors = false;

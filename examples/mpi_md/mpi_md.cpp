@@ -3,12 +3,16 @@
 // list). Prints the energies per atom as it goes, the list builds, the speed and the halo
 // (ghost fraction and neighbour ranks per rank). With --check, rank 0 also runs the serial
 // md_lj simulation and prints the largest energy difference (exit status 1 above 1e-8 per atom).
+// With --traffic, rank 0 prints the messages and bytes each rank sent per exchange, as counted by
+// the library (DistributedVerletList::traffic(), means over ranks), beside the model of
+// tricell/mpi/traffic.hpp.
 //
 //   mpirun -np K mpi_md [--steps 200] [--atoms 864 | --atoms-per-rank N] [--skin 0.3]
-//                       [--seed 1] [--dt 0.005] [--check]
+//                       [--seed 1] [--dt 0.005] [--check] [--traffic]
 //
 // --atoms is rounded to the nearest 4 n^3; --atoms-per-rank N asks for about N K atoms (weak
 // scaling).
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -40,12 +44,63 @@ HaloSummary summarize(const tricell::mpi::Decomposition& d, const tricell::mpi::
     return out;
 }
 
+// Mean over ranks.
+double mean(const tricell::mpi::Decomposition& d, double mine) {
+    double all = 0;
+    MPI_Allreduce(&mine, &all, 1, MPI_DOUBLE, MPI_SUM, d.comm());
+    return all / d.size();
+}
+
+// Counted per exchange (means over ranks) against the model, one table row per kind.
+void print_traffic(const tricell::mpi::Decomposition& d, const mpi_md::MpiLjSimulation& sim,
+                   double reach) {
+    const tricell::mpi::ListTraffic& t = sim.list().traffic();
+    const tricell::mpi::HaloStats& s = sim.list().halo().stats();
+    const tricell::mpi::HaloModel model = tricell::mpi::halo_model(d, sim.box(), reach);
+    const double owned = mean(d, double(s.owned));
+    const double ghosts = mean(d, double(s.ghosts));
+    const double sent_ghosts = model.sent_ghosts_per_atom * owned;
+    struct Row {
+        const char* kind;
+        const tricell::mpi::Traffic& counted;
+        double bytes_per_ghost; // 0: not modelled
+    };
+    const Row rows[] = {
+        {"halo update (positions)", t.halo_update, double(tricell::mpi::Halo::update_record_bytes)},
+        {"reverse_sum (forces)", t.reverse_sum, 24.0},
+        {"halo build", t.halo_build, double(tricell::mpi::Halo::build_record_bytes)},
+        {"migration (neighbours)", t.migration, 0.0},
+    };
+    if (d.rank() == 0) {
+        std::printf("# traffic per rank per exchange, counted (mean over ranks) / model; ghosts "
+                    "per owned atom %.3f / %.3f (sent %.3f)\n",
+                    ghosts / owned, model.ghosts_per_atom, model.sent_ghosts_per_atom);
+        std::printf("# | ranks | kind | exchanges | messages | model | bytes | model |\n");
+    }
+    for (const Row& r : rows) {
+        const double calls = double(std::max<std::uint64_t>(r.counted.exchanges, 1));
+        const double messages = mean(d, double(r.counted.messages) / calls);
+        const double bytes = mean(d, double(r.counted.bytes) / calls);
+        if (d.rank() == 0) {
+            std::printf("| %d | %s | %llu | %.2f | %d | %.0f | ", d.size(), r.kind,
+                        static_cast<unsigned long long>(r.counted.exchanges), messages,
+                        model.messages, bytes);
+            if (r.bytes_per_ghost > 0) {
+                std::printf("%.0f |\n", r.bytes_per_ghost * sent_ghosts);
+            } else {
+                std::printf("- |\n");
+            }
+        }
+    }
+}
+
 int run(int argc, char** argv) {
     int steps = 200;
     int atoms = 864;
     int atoms_per_rank = 0;
     unsigned long long seed = 1;
     bool check = false;
+    bool traffic = false;
     md_lj::MdOptions options;
     for (int k = 1; k < argc; ++k) {
         const std::string arg = argv[k];
@@ -54,10 +109,14 @@ int run(int argc, char** argv) {
             check = true;
             continue;
         }
+        if (arg == "--traffic") {
+            traffic = true;
+            continue;
+        }
         if (value == nullptr || (arg != "--steps" && arg != "--skin" && arg != "--atoms" &&
                                  arg != "--seed" && arg != "--dt" && arg != "--atoms-per-rank")) {
             std::fprintf(stderr, "usage: mpi_md [--steps N] [--atoms N | --atoms-per-rank N] "
-                                 "[--skin D] [--seed S] [--dt T] [--check]\n");
+                                 "[--skin D] [--seed S] [--dt T] [--check] [--traffic]\n");
             return 2;
         }
         ++k;
@@ -143,6 +202,9 @@ int run(int argc, char** argv) {
             std::printf("# largest |energy - serial| per atom: %.3g (%s)\n", worst,
                         worst <= 1e-8 ? "MATCHES SERIAL" : "DIFFERS FROM SERIAL");
         }
+    }
+    if (traffic) {
+        print_traffic(decomposition, sim, options.cutoff + options.skin);
     }
     return serial && worst > 1e-8 ? 1 : 0;
 }

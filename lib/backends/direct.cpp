@@ -87,7 +87,7 @@ class DirectBackend final : public Backend {
         }
         // Every image with |T| < reach, S = 0 first, with its bucket of |T|.
         reach_sq_ = reach_ * reach_;
-        found_.assign(1, Found{ImageShift{{0, 0, 0}, 0, 0, 0}, 0, false});
+        found_.assign(1, Found{ImageShift{{0, 0, 0}, {0, 0, 0}}, 0, false});
         const Eigen::Vector3d c = h.col(2);
         const double cc = c.squaredNorm();
         for (int sa = -m[0]; sa <= m[0]; ++sa) {
@@ -119,7 +119,7 @@ class DirectBackend final : public Backend {
                     if (norm_sq < reach_sq_) {
                         const bool positive =
                             sa > 0 || (sa == 0 && (sb > 0 || (sb == 0 && sc > 0)));
-                        found_.push_back(Found{ImageShift{{sa, sb, sc}, t.x(), t.y(), t.z()},
+                        found_.push_back(Found{ImageShift{{sa, sb, sc}, {t.x(), t.y(), t.z()}},
                                                bucket(norm_sq), positive});
                     }
                 }

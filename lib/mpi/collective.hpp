@@ -15,8 +15,9 @@ namespace tricell::mpi::detail {
 /// `min_value`, the same single MPI_Allreduce also replaces *min_value by its minimum over ranks.
 void agree(MPI_Comm comm, const std::string& error, int* min_value = nullptr);
 
-/// Collective. Runs check(), catching what it throws, then agree()s.
-template <class Check> void agreed(MPI_Comm comm, Check&& check) {
+/// Collective. Runs check(), catching what it throws, then agree()s (with min_value as there:
+/// a vote taken by the same MPI_Allreduce).
+template <class Check> void agreed(MPI_Comm comm, Check&& check, int* min_value = nullptr) {
     std::string error;
     try {
         check();
@@ -26,7 +27,7 @@ template <class Check> void agreed(MPI_Comm comm, Check&& check) {
             error = "unknown error";
         }
     }
-    agree(comm, error);
+    agree(comm, error, min_value);
 }
 
 /// Throws tricell::Error naming the MPI call when an MPI function did not return MPI_SUCCESS.

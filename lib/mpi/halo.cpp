@@ -29,6 +29,16 @@ struct Record {
     double radius;
 };
 
+// What travels per ghost in update(): the new position and image (the rest is the build's).
+struct Moved {
+    double y[3];
+    std::int32_t c[3];
+    std::int32_t unused; // zero: no uninitialised bytes on the wire
+};
+
+static_assert(sizeof(Record) == Halo::build_record_bytes, "the build's record is 56 bytes");
+static_assert(sizeof(Moved) == Halo::update_record_bytes, "the update's record is 40 bytes");
+
 // One candidate along one axis: the interval of the destination and the translation.
 struct AxisHit {
     int interval;
@@ -200,7 +210,7 @@ void Halo::build(const Decomposition& decomposition, const Box& box,
             }
         }
     }
-    exchange(decomposition, box, true);
+    exchange(decomposition, box);
 }
 
 void Halo::update(const Decomposition& decomposition, const Box& box, PointsView positions) {
@@ -225,7 +235,7 @@ void Halo::update(const Decomposition& decomposition, const Box& box, PointsView
         Eigen::Vector3d c = Eigen::Vector3d::Zero();
         for (int k = 0; k < 3; ++k) {
             if (pbc_[k]) {
-                c[k] = std::round(s[k] - reference_[3 * a + std::size_t(k)]);
+                c[k] = std::nearbyint(s[k] - reference_[3 * a + std::size_t(k)]);
             }
         }
         const Eigen::Vector3d y = x - hm * c;
@@ -234,10 +244,67 @@ void Halo::update(const Decomposition& decomposition, const Box& box, PointsView
             images_[3 * a + std::size_t(k)] = std::int32_t(c[k]);
         }
     }
-    exchange(decomposition, box, false);
+    send_positions(decomposition, box);
 }
 
-void Halo::exchange(const Decomposition& decomposition, const Box& box, bool first) {
+void Halo::send_positions(const Decomposition& decomposition, const Box& box) {
+    const MPI_Comm comm = decomposition.comm();
+    const Eigen::Matrix3d& hm = box.matrix();
+    // Ghost g of owned atom a with translation T: y_g = y_a + H T, c_g = c_a - T.
+    auto moved = [&](const Send& send, double* y, std::int32_t* c) {
+        const std::size_t a = send.atom;
+        const double t0 = send.t[0], t1 = send.t[1], t2 = send.t[2];
+        for (int k = 0; k < 3; ++k) {
+            y[k] = y_[3 * a + std::size_t(k)] + (hm(k, 0) * t0 + hm(k, 1) * t1 + hm(k, 2) * t2);
+            c[k] = images_[3 * a + std::size_t(k)] - send.t[k];
+        }
+    };
+    std::vector<std::vector<Moved>> out(neighbors_.size()), in(neighbors_.size());
+    std::vector<MPI_Request> requests;
+    requests.reserve(2 * neighbors_.size());
+    stats_.bytes_sent = 0;
+    stats_.messages_sent = int(neighbors_.size());
+    for (std::size_t n = 0; n < neighbors_.size(); ++n) {
+        in[n].resize(received_[n]);
+        requests.emplace_back();
+        detail::check_mpi(MPI_Irecv(in[n].data(), int(received_[n] * sizeof(Moved)), MPI_BYTE,
+                                    neighbors_[n], tag_update, comm, &requests.back()),
+                          "MPI_Irecv");
+    }
+    for (std::size_t n = 0; n < neighbors_.size(); ++n) {
+        out[n].resize(sends_[n].size());
+        for (std::size_t g = 0; g < sends_[n].size(); ++g) {
+            Moved& m = out[n][g];
+            moved(sends_[n][g], m.y, m.c);
+            m.unused = 0;
+        }
+        const std::size_t bytes = out[n].size() * sizeof(Moved);
+        stats_.bytes_sent += bytes;
+        requests.emplace_back();
+        detail::check_mpi(MPI_Isend(out[n].data(), int(bytes), MPI_BYTE, neighbors_[n], tag_update,
+                                    comm, &requests.back()),
+                          "MPI_Isend");
+    }
+    // Images of this rank's own atoms straight into their slots, then each neighbour's.
+    for (std::size_t g = 0; g < self_sends_.size(); ++g) {
+        const std::size_t slot = owned_ + g;
+        moved(self_sends_[g], &y_[3 * slot], &images_[3 * slot]);
+    }
+    detail::check_mpi(MPI_Waitall(int(requests.size()), requests.data(), MPI_STATUSES_IGNORE),
+                      "MPI_Waitall");
+    for (std::size_t n = 0; n < neighbors_.size(); ++n) {
+        std::size_t slot = first_slot(n);
+        for (const Moved& m : in[n]) {
+            for (int k = 0; k < 3; ++k) {
+                y_[3 * slot + std::size_t(k)] = m.y[k];
+                images_[3 * slot + std::size_t(k)] = m.c[k];
+            }
+            ++slot;
+        }
+    }
+}
+
+void Halo::exchange(const Decomposition& decomposition, const Box& box) {
     const MPI_Comm comm = decomposition.comm();
     const Eigen::Matrix3d& hm = box.matrix();
     auto fill = [&](const Send& send, Record& r) {
@@ -257,7 +324,7 @@ void Halo::exchange(const Decomposition& decomposition, const Box& box, bool fir
     std::vector<std::vector<Record>> out(neighbors_.size());
     std::vector<MPI_Request> requests;
     requests.reserve(2 * neighbors_.size());
-    const int tag = first ? tag_build : tag_update;
+    const int tag = tag_build;
     stats_.bytes_sent = 0;
     stats_.messages_sent = int(neighbors_.size());
     for (std::size_t n = 0; n < neighbors_.size(); ++n) {
@@ -279,27 +346,17 @@ void Halo::exchange(const Decomposition& decomposition, const Box& box, bool fir
         fill(self_sends_[g], self[g]);
     }
     std::vector<std::vector<Record>> in(neighbors_.size());
-    if (first) {
-        received_.assign(neighbors_.size(), 0);
-        for (std::size_t n = 0; n < neighbors_.size(); ++n) {
-            MPI_Status status;
-            detail::check_mpi(MPI_Probe(neighbors_[n], tag, comm, &status), "MPI_Probe");
-            int bytes = 0;
-            MPI_Get_count(&status, MPI_BYTE, &bytes);
-            in[n].resize(std::size_t(bytes) / sizeof(Record));
-            received_[n] = in[n].size();
-            detail::check_mpi(MPI_Recv(in[n].data(), bytes, MPI_BYTE, neighbors_[n], tag, comm,
-                                       MPI_STATUS_IGNORE),
-                              "MPI_Recv");
-        }
-    } else {
-        for (std::size_t n = 0; n < neighbors_.size(); ++n) {
-            in[n].resize(received_[n]);
-            requests.emplace_back();
-            detail::check_mpi(MPI_Irecv(in[n].data(), int(received_[n] * sizeof(Record)), MPI_BYTE,
-                                        neighbors_[n], tag, comm, &requests.back()),
-                              "MPI_Irecv");
-        }
+    received_.assign(neighbors_.size(), 0);
+    for (std::size_t n = 0; n < neighbors_.size(); ++n) {
+        MPI_Status status;
+        detail::check_mpi(MPI_Probe(neighbors_[n], tag, comm, &status), "MPI_Probe");
+        int bytes = 0;
+        MPI_Get_count(&status, MPI_BYTE, &bytes);
+        in[n].resize(std::size_t(bytes) / sizeof(Record));
+        received_[n] = in[n].size();
+        detail::check_mpi(
+            MPI_Recv(in[n].data(), bytes, MPI_BYTE, neighbors_[n], tag, comm, MPI_STATUS_IGNORE),
+            "MPI_Recv");
     }
     detail::check_mpi(MPI_Waitall(int(requests.size()), requests.data(), MPI_STATUSES_IGNORE),
                       "MPI_Waitall");

@@ -161,7 +161,7 @@ void pack(const LocalAtoms& atoms, std::size_t a, std::vector<double>& out) {
 } // namespace
 
 bool migrate(const Decomposition& decomposition, const Box& box, LocalAtoms& atoms,
-             const std::vector<int>& neighbors) {
+             const std::vector<int>& neighbors, Traffic* sent) {
     const MPI_Comm comm = decomposition.comm();
     const int me = decomposition.rank();
     std::vector<int> own;
@@ -196,11 +196,13 @@ bool migrate(const Decomposition& decomposition, const Box& box, LocalAtoms& ato
     }
     std::vector<MPI_Request> requests;
     requests.reserve(sources.size());
+    std::uint64_t bytes_sent = 0;
     for (std::size_t n = 0; n < sources.size(); ++n) {
         if (sources[n] == me) {
             in[n].swap(out[n]);
             continue;
         }
+        bytes_sent += out[n].size() * sizeof(double);
         requests.emplace_back();
         detail::check_mpi(MPI_Isend(out[n].data(), int(out[n].size()), MPI_DOUBLE, sources[n],
                                     tag_migrate, comm, &requests.back()),
@@ -221,6 +223,9 @@ bool migrate(const Decomposition& decomposition, const Box& box, LocalAtoms& ato
     }
     detail::check_mpi(MPI_Waitall(int(requests.size()), requests.data(), MPI_STATUSES_IGNORE),
                       "MPI_Waitall");
+    if (sent) {
+        sent->add(neighbors.size(), bytes_sent);
+    }
     const std::size_t record = 4 + atoms.payload_width;
     std::size_t n = 0;
     for (const auto& v : in) {

@@ -43,7 +43,7 @@ void sort_pairs(DistributedPairs& p) {
     };
     std::sort(order.begin(), order.end(),
               [&](std::size_t a, std::size_t b) { return key(a) < key(b); });
-    std::vector<std::uint32_t> owned(n), local_j(n);
+    PairArray<std::uint32_t> owned(n), local_j(n);
     for (std::size_t k = 0; k < n; ++k) {
         owned[k] = p.owned[order[k]];
         local_j[k] = p.local_j[order[k]];

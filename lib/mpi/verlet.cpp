@@ -1,89 +1,251 @@
+// The distributed Verlet list (tricell/mpi/verlet.hpp): the rebuild vote, the build of oriented
+// candidates (the list's rule applied once per build) and the filter of each update().
 #include "tricell/mpi/verlet.hpp"
 
+#include <cmath>
 #include <exception>
 #include <numeric>
 #include <string>
+#include <type_traits>
 
 #include "collective.hpp"
+#include "detail/candidate_radius.hpp"
 #include "pair_map.hpp"
+#include "search/distance_kernel.hpp"
 #include "tricell/error.hpp"
 
 namespace tricell::mpi {
 
+namespace {
+
+// Output columns of a refresh, written through raw pointers into arrays sized for every
+// candidate, trimmed to the pairs found at the end.
+struct RefreshColumns {
+    std::uint32_t* owned;
+    std::uint32_t* local_j;
+    std::uint64_t* i;
+    std::uint64_t* j;
+    std::int32_t* shifts;
+    double* distances;
+    double* vectors;
+};
+
+// The filter over the oriented candidates, grouped by owned i. Branch-free: every candidate is
+// written at the next free slot, which advances only for a pair within the cutoff.
+template <bool Shifts, bool Distances, bool Vectors>
+std::size_t filter_candidates(std::size_t owned, const std::size_t* offsets,
+                              const std::uint32_t* cand_b, const double* y,
+                              const std::uint64_t* ids, const std::int32_t* images,
+                              double cutoff_sq, RefreshColumns out) {
+    std::size_t count = 0;
+    for (std::size_t a = 0; a < owned; ++a) {
+        const double xa = y[3 * a];
+        const double ya = y[3 * a + 1];
+        const double za = y[3 * a + 2];
+        const std::uint64_t id = ids[a];
+        const std::size_t end = offsets[a + 1];
+        for (std::size_t p = offsets[a]; p < end; ++p) {
+            const std::size_t b = cand_b[p];
+            const double dx = y[3 * b] - xa;
+            const double dy = y[3 * b + 1] - ya;
+            const double dz = y[3 * b + 2] - za;
+            const double d_sq = dx * dx + dy * dy + dz * dz;
+            out.owned[count] = std::uint32_t(a);
+            out.local_j[count] = std::uint32_t(b);
+            out.i[count] = id;
+            out.j[count] = ids[b];
+            if constexpr (Shifts) {
+                // S = c_a - c_b (halo.hpp), relative to the owners' caller positions.
+                for (std::size_t k = 0; k < 3; ++k) {
+                    out.shifts[3 * count + k] = images[3 * a + k] - images[3 * b + k];
+                }
+            }
+            if constexpr (Distances) {
+                out.distances[count] = std::sqrt(d_sq);
+            }
+            if constexpr (Vectors) {
+                out.vectors[3 * count] = dx;
+                out.vectors[3 * count + 1] = dy;
+                out.vectors[3 * count + 2] = dz;
+            }
+            count += d_sq < cutoff_sq ? 1 : 0;
+        }
+    }
+    return count;
+}
+
+template <class F> std::size_t with_flag(bool flag, F f) {
+    return flag ? f(std::true_type{}) : f(std::false_type{});
+}
+
+void add_exchange(const Halo& halo, Traffic& to) {
+    to.add(std::uint64_t(halo.stats().messages_sent), std::uint64_t(halo.stats().bytes_sent));
+}
+
+void add_values(const Halo& halo, Traffic& to) {
+    to.add(std::uint64_t(halo.comm_messages_sent()), std::uint64_t(halo.comm_bytes_sent()));
+}
+
+} // namespace
+
 DistributedVerletList::DistributedVerletList(const VerletOptions& options) : options_(options) {
     options_.validate();
-    VerletOptions local = options_;
-    local.neighbors.half = true;
-    // d and D as the caller asks; S comes from the halo images (pair_map.hpp).
-    local.neighbors.quantities = Quantities{false, options_.neighbors.quantities.distances,
-                                            options_.neighbors.quantities.vectors};
-    local_ = VerletList(local);
 }
 
 void DistributedVerletList::reset() {
     built_ = false;
-    local_.reset();
+    tracker_.reset();
+    candidate_offsets_.clear();
+    candidate_b_.clear();
     pairs_.clear();
 }
 
 bool DistributedVerletList::update(const Decomposition& decomposition, const Box& box,
                                    LocalAtoms& atoms) {
-    const MPI_Comm comm = decomposition.comm();
-    const Box open = Box::from_columns(box.matrix(), Periodicity::none());
-    detail::agreed(comm, [&] { atoms.validate(); });
+    // On an error (thrown on every rank alike) the build is forgotten and the pairs emptied, as
+    // the serial list does: the next update() rebuilds.
+    try {
+        const MPI_Comm comm = decomposition.comm();
+        const Box open = Box::from_columns(box.matrix(), Periodicity::none());
 
-    // Can the build still serve? Every rank must say yes.
-    int keep =
-        built_ && atoms.size() == halo_.owned_count() && box.periodicity() == built_periodicity_;
-    detail::check_mpi(MPI_Allreduce(MPI_IN_PLACE, &keep, 1, MPI_INT, MPI_MIN, comm),
-                      "MPI_Allreduce");
-    if (keep) {
-        halo_.update(decomposition, box, atoms.points());
-        double excess = 0;
-        detail::agreed(comm, [&] {
-            excess =
-                local_.max_displacement(open, halo_.points()) - local_.displacement_budget(open);
-        });
-        detail::check_mpi(MPI_Allreduce(MPI_IN_PLACE, &excess, 1, MPI_DOUBLE, MPI_MAX, comm),
-                          "MPI_Allreduce");
-        keep = excess <= 0;
-    }
-    if (keep) {
-        detail::agreed(comm, [&] { local_.update(open, halo_.points()); });
-    } else {
-        built_ = false;
-        // Among the last halo's neighbour ranks when every atom's owner is one of them (an atom
-        // moves less than the halo reach in a Verlet interval), else MPI_Alltoall.
-        if (!halo_built_ || !migrate(decomposition, box, atoms, halo_.neighbor_ranks())) {
-            if (!halo_built_) {
-                migrate(decomposition, box, atoms);
-            }
-            ++alltoall_migrations_;
+        // Can the build still serve? Every rank must say yes (one MPI_Allreduce with the input
+        // check).
+        int keep = built_ && atoms.size() == halo_.owned_count() &&
+                   box.periodicity() == built_periodicity_;
+        detail::agreed(
+            comm, [&] { atoms.validate(); }, &keep);
+        if (keep) {
+            halo_.update(decomposition, box, atoms.points());
+            add_exchange(halo_, traffic_.halo_update);
+            // The owned atoms only: a ghost moved as its owner did, whose rank checks it.
+            detail::agreed(
+                comm,
+                [&] {
+                    keep = !tracker_.needs_rebuild(
+                        open, PointsView(halo_.positions().data(), halo_.owned_count()),
+                        options_.skin, options_.neighbors.cutoff);
+                },
+                &keep);
         }
-        halo_.build(decomposition, box, atoms.ids, atoms.points(), local_.list_radius());
-        // Pairs of the owned atoms only (the first of the local atoms): no ghost-ghost pair.
-        std::vector<std::uint32_t> owned(halo_.owned_count());
-        std::iota(owned.begin(), owned.end(), 0u);
-        local_.set_query(std::move(owned));
-        detail::agreed(comm, [&] { local_.rebuild(open, halo_.points()); });
-        built_ = true;
-        halo_built_ = true;
-        built_periodicity_ = box.periodicity();
-        ++rebuild_count_;
+        if (!keep) {
+            built_ = false;
+            // Among the last halo's neighbour ranks when every atom's owner is one of them (an atom
+            // moves less than the halo reach in a Verlet interval), else MPI_Alltoall.
+            if (!halo_built_ ||
+                !migrate(decomposition, box, atoms, halo_.neighbor_ranks(), &traffic_.migration)) {
+                if (!halo_built_) {
+                    migrate(decomposition, box, atoms);
+                }
+                ++alltoall_migrations_;
+            }
+            halo_.build(decomposition, box, atoms.ids, atoms.points(), list_radius());
+            add_exchange(halo_, traffic_.halo_build);
+            halo_built_ = true;
+            build(decomposition, open);
+            built_ = true;
+            built_periodicity_ = box.periodicity();
+            ++rebuild_count_;
+        }
+        refresh();
+        return !keep;
+    } catch (...) {
+        reset();
+        throw;
     }
-    detail::map_pairs(local_.pairs(), halo_, options_.neighbors.half, false,
-                      options_.neighbors.quantities, pairs_);
-    return !keep;
+}
+
+void DistributedVerletList::build(const Decomposition& decomposition, const Box& open) {
+    const std::size_t owned = halo_.owned_count();
+    const PointsView local = halo_.points();
+    detail::agreed(decomposition.comm(), [&] {
+        options_.validate();
+        // Pairs of the owned atoms only (the first of the local atoms): no ghost-ghost pair.
+        NeighborOptions search = options_.neighbors;
+        search.cutoff = tricell::detail::candidate_radius(list_radius(), open, local);
+        std::vector<std::uint32_t> query(owned);
+        std::iota(query.begin(), query.end(), 0u);
+        search.query = std::move(query);
+        search.half = true;
+        search.sorted = false;
+        search.grouped = false;
+        search.quantities = Quantities{false, false, false};
+        search_.build(open, local, search);
+        search_.compute(raw_);
+        tracker_.record(open, PointsView(halo_.positions().data(), owned));
+    });
+    // The list's rule once per local pair: (owned i, local j) in the orientation reported.
+    detail::map_pairs(raw_, halo_, options_.neighbors.half, false, Quantities{false, false, false},
+                      oriented_);
+    raw_.clear();
+    // Grouped by owned i (counting sort, each atom's candidates in the search's order).
+    const std::size_t count = oriented_.size();
+    candidate_offsets_.assign(owned + 1, 0);
+    for (std::size_t p = 0; p < count; ++p) {
+        ++candidate_offsets_[oriented_.owned[p] + 1];
+    }
+    std::partial_sum(candidate_offsets_.begin(), candidate_offsets_.end(),
+                     candidate_offsets_.begin());
+    std::vector<std::size_t> cursor(candidate_offsets_.begin(), candidate_offsets_.end() - 1);
+    candidate_b_.resize(count);
+    for (std::size_t p = 0; p < count; ++p) {
+        candidate_b_[cursor[oriented_.owned[p]]++] = oriented_.local_j[p];
+    }
+    oriented_.clear();
+}
+
+void DistributedVerletList::refresh() {
+    const Quantities& q = options_.neighbors.quantities;
+    const std::size_t capacity = candidate_b_.size();
+    DistributedPairs& out = pairs_;
+    out.owned.resize(capacity);
+    out.local_j.resize(capacity);
+    out.i.resize(capacity);
+    out.j.resize(capacity);
+    out.shifts.resize(q.shifts ? 3 * capacity : 0);
+    out.distances.resize(q.distances ? capacity : 0);
+    out.vectors.resize(q.vectors ? 3 * capacity : 0);
+    const RefreshColumns columns{out.owned.data(),  out.local_j.data(), out.i.data(),
+                                 out.j.data(),      out.shifts.data(),  out.distances.data(),
+                                 out.vectors.data()};
+    const double cutoff_sq = tricell::detail::strict_threshold_sq(options_.neighbors.cutoff);
+    auto run = [&](auto shifts, auto distances, auto vectors) {
+        return filter_candidates<decltype(shifts)::value, decltype(distances)::value,
+                                 decltype(vectors)::value>(
+            halo_.owned_count(), candidate_offsets_.data(), candidate_b_.data(),
+            halo_.positions().data(), halo_.ids().data(), halo_.images().data(), cutoff_sq,
+            columns);
+    };
+    // One instantiation per set of columns (no branch per pair).
+    const std::size_t n = with_flag(q.shifts, [&](auto s) {
+        return with_flag(q.distances, [&](auto d) {
+            return with_flag(q.vectors, [&](auto v) { return run(s, d, v); });
+        });
+    });
+    out.owned.resize(n);
+    out.local_j.resize(n);
+    out.i.resize(n);
+    out.j.resize(n);
+    out.shifts.resize(q.shifts ? 3 * n : 0);
+    out.distances.resize(q.distances ? n : 0);
+    out.vectors.resize(q.vectors ? 3 * n : 0);
 }
 
 void DistributedVerletList::forward(const Decomposition& decomposition, const Box& box,
                                     const LocalAtoms& atoms) {
     halo_.update(decomposition, box, atoms.points());
+    add_exchange(halo_, traffic_.halo_update);
+}
+
+void DistributedVerletList::forward_values(const Decomposition& decomposition,
+                                           std::vector<double>& values, std::size_t width) const {
+    halo_.forward(decomposition, values, width);
+    add_values(halo_, traffic_.forward);
 }
 
 void DistributedVerletList::reverse_sum(const Decomposition& decomposition,
                                         std::vector<double>& values, std::size_t width) const {
     halo_.reverse_sum(decomposition, values, width);
+    add_values(halo_, traffic_.reverse_sum);
 }
 
 } // namespace tricell::mpi

@@ -7,8 +7,13 @@
 // Positions live in an AtomTable: the wrapped Cartesian positions struct-of-arrays in the
 // backend's order (contiguous ranges stream through the vectorised kernel), the integer image
 // each came from (x = wrapped + H image) and the caller's index of each. A pair (a, b) found
-// through the cell shift s has D = x_b + H s - x_a in the search frame and, for the caller,
-// S = s + image_a - image_b.
+// through the cell shift s has, for the caller, S = s + image_a - image_b and
+// D = (x_b - x_a) + T with T = H s in the search frame, rounded in exactly that order (the
+// positions' difference first, then the translation) and a zero component stored as +0. IEEE
+// rounding is symmetric (fl(p - q) = -fl(q - p), and T of -s is exactly -T), so the same pair
+// found from b is (b, a) through -s with exactly -D and the same d^2: D is a function of
+// (i, j, S) alone, whichever atom a backend scans first, and a half list turns a pair into its
+// canonical orientation by negating D, computing nothing again.
 //
 // A subset search (NeighborOptions::query) flags the query atoms; the backend is binned for a
 // full list, and the scanner takes as first atom a only query atoms, gathered from each range
@@ -74,7 +79,7 @@ class CutoffRule {
 /// An image shift s (search frame) and its Cartesian vector H s.
 struct ImageShift {
     int s[3];
-    double vx, vy, vz;
+    double v[3];
 };
 
 class CandidateScanner {
@@ -94,7 +99,7 @@ class CandidateScanner {
 
     ImageShift shift(int sa, int sb, int sc) const {
         const Eigen::Vector3d v = h_.col(0) * sa + h_.col(1) * sb + h_.col(2) * sc;
-        return ImageShift{{sa, sb, sc}, v.x(), v.y(), v.z()};
+        return ImageShift{{sa, sb, sc}, {v.x(), v.y(), v.z()}};
     }
 
     /// Every a in [a0, a1) with every b in [b0, b1) through `s`. With `own` the two ranges hold
@@ -127,13 +132,13 @@ class CandidateScanner {
             return;
         }
         ++tests_;
-        const double dx = x_[b] - (x_[a] - s.vx);
-        const double dy = y_[b] - (y_[a] - s.vy);
-        const double dz = z_[b] - (z_[a] - s.vz);
+        const double dx = (x_[b] - x_[a]) + s.v[0];
+        const double dy = (y_[b] - y_[a]) + s.v[1];
+        const double dz = (z_[b] - z_[a]) + s.v[2];
         const double d_sq = dx * dx + dy * dy + dz * dz;
         if (d_sq < cutoff_sq_) {
-            hit(a, b, index_[a], s.s[0] + image_[3 * a], s.s[1] + image_[3 * a + 1],
-                s.s[2] + image_[3 * a + 2], s, dx, dy, dz, d_sq);
+            hit(b, index_[a], s.s[0] + image_[3 * a], s.s[1] + image_[3 * a + 1],
+                s.s[2] + image_[3 * a + 2], dx, dy, dz, d_sq);
         }
     }
 
@@ -150,12 +155,12 @@ class CandidateScanner {
         const int ia = image_[3 * a], ib = image_[3 * a + 1], ic = image_[3 * a + 2];
         for (std::size_t k = 0; k < count; ++k) {
             const ImageShift& s = shifts[k];
-            const double dx = bx - (ax - s.vx);
-            const double dy = by - (ay - s.vy);
-            const double dz = bz - (az - s.vz);
+            const double dx = (bx - ax) + s.v[0];
+            const double dy = (by - ay) + s.v[1];
+            const double dz = (bz - az) + s.v[2];
             const double d_sq = dx * dx + dy * dy + dz * dz;
             if (d_sq < cutoff_sq_) {
-                hit(a, b, i, s.s[0] + ia, s.s[1] + ib, s.s[2] + ic, s, dx, dy, dz, d_sq);
+                hit(b, i, s.s[0] + ia, s.s[1] + ib, s.s[2] + ic, dx, dy, dz, d_sq);
             }
         }
     }
@@ -169,7 +174,7 @@ class CandidateScanner {
   private:
     // What a hit needs of the atoms a of one scan, looked up once per scan rather than once per
     // pair (the image arithmetic was ~30 of the ~120 instructions per stored pair on diamond
-    // Si): the position relative to s and, for the caller, the index and s + image.
+    // Si): the position and, for the caller, the index and s + image.
     struct Side {
         std::uint32_t a[kernel_group]; ///< the atoms, in the backend's order
         double x[kernel_group], y[kernel_group], z[kernel_group];
@@ -211,9 +216,9 @@ class CandidateScanner {
         for (std::uint32_t g = 0; g < group; ++g) {
             const std::uint32_t a = atoms[g];
             side.a[g] = a;
-            side.x[g] = x_[a] - s.vx;
-            side.y[g] = y_[a] - s.vy;
-            side.z[g] = z_[a] - s.vz;
+            side.x[g] = x_[a];
+            side.y[g] = y_[a];
+            side.z[g] = z_[a];
             side.i[g] = index_[a];
             side.sa[g] = s.s[0] + image_[3 * a];
             side.sb[g] = s.s[1] + image_[3 * a + 1];
@@ -225,7 +230,7 @@ class CandidateScanner {
             const std::uint32_t count = std::min(kernel_block, to - start);
             std::uint32_t found =
                 within_cutoff_group(x_ + start, y_ + start, z_ + start, count, side.x, side.y,
-                                    side.z, group, cutoff_sq_, hits, hit_d_sq);
+                                    side.z, group, s.v, cutoff_sq_, hits, hit_d_sq);
             if (own) {
                 found = drop_others(side, start, hits, hit_d_sq, found);
             }
@@ -238,7 +243,7 @@ class CandidateScanner {
             if (!rule_.uniform()) {
                 keep_some(side, start, hits, hit_d_sq, found, s);
             } else if (!half_) {
-                keep_all(side, start, hits, hit_d_sq, found);
+                keep_all(side, start, hits, hit_d_sq, found, s);
             } else {
                 keep_oriented(side, start, hits, hit_d_sq, found, s);
             }
@@ -279,10 +284,9 @@ class CandidateScanner {
         return kept;
     }
 
-    // The hits of a block of which some may not count (a half list orients each pair and
-    // drops the rare one whose test fails in the other orientation; a variable cutoff drops
-    // more): pair by pair, but with the block's places claimed once, D computed only when
-    // stored and the square roots taken together at the end.
+    // The hits of a block with a variable cutoff, which drops some: pair by pair (oriented for
+    // a half list), with the block's places claimed once, D computed only when stored and the
+    // square roots taken together at the end.
     void keep_some(const Side& side, std::uint32_t start, const std::uint32_t* hits,
                    const double* d_sq, std::uint32_t found, const ImageShift& s) {
         const PairSink::Slots out = sink_.claim(found);
@@ -293,35 +297,29 @@ class CandidateScanner {
             const std::uint32_t b = start + hits[h] % kernel_block;
             Hit p = make_hit(b, side.i[g], side.sa[g], side.sb[g], side.sc[g], 0, 0, 0, d_sq[h]);
             if (out.vectors != nullptr) {
-                p.dx = x_[b] - side.x[g];
-                p.dy = y_[b] - side.y[g];
-                p.dz = z_[b] - side.z[g];
+                p.dx = (x_[b] - side.x[g]) + s.v[0];
+                p.dy = (y_[b] - side.y[g]) + s.v[1];
+                p.dz = (z_[b] - side.z[g]) + s.v[2];
             }
-            if (!counts(side.a[g], b, s, p)) {
+            if (!counts(p)) {
                 continue;
             }
-            PairSink::put(out, kept, p.i, p.j, p.sa, p.sb, p.sc, p.dx, p.dy, p.dz);
+            PairSink::put(out, kept, p.i, p.j, p.sa, p.sb, p.sc, p.dx + 0.0, p.dy + 0.0,
+                          p.dz + 0.0);
             kept_d_sq[kept++] = p.d_sq;
         }
         PairSink::put_distances(out, kept_d_sq, kept);
         sink_.commit(kept);
     }
 
-    // A half list with a uniform cutoff: keep_some() in passes over the block. Which
-    // orientation a pair takes is a coin toss (caller indices against the backend's order), so
-    // the first pass writes i, j and S of either without a branch and lists the pairs turned
-    // around; only those have D and d^2 computed again, in their own orientation (see counts()).
-    // In the rare block where that second test fails, keep_some() redoes the block (it reads
-    // d^2 only of the pairs not turned around, which this leaves as they were).
+    // A half list with a uniform cutoff keeps every hit of a block, each in its canonical
+    // orientation. Which orientation a pair takes is a coin toss (caller indices against the
+    // backend's order), so i, j, S and D of either are written without a branch: a pair turned
+    // around has i and j swapped, -S and -D (exact, see above) and the same d.
     void keep_oriented(const Side& side, std::uint32_t start, const std::uint32_t* hits,
-                       double* d_sq, std::uint32_t found, const ImageShift& s) {
+                       const double* d_sq, std::uint32_t found, const ImageShift& s) {
         const PairSink::Slots out = sink_.claim(found);
-        if (out.vectors != nullptr) {
-            keep_some(side, start, hits, d_sq, found, s);
-            return;
-        }
-        std::uint32_t turned[kernel_group * kernel_block];
-        std::uint32_t turns = 0;
+        double sign[kernel_group * kernel_block];
         for (std::uint32_t h = 0; h < found; ++h) {
             const std::uint32_t g = hits[h] / kernel_block;
             const std::uint32_t b = start + hits[h] % kernel_block;
@@ -330,31 +328,26 @@ class CandidateScanner {
             const int sb = side.sb[g] - image_[3 * b + 1];
             const int sc = side.sc[g] - image_[3 * b + 2];
             const bool other = flip(i, j, sa, sb, sc);
-            const int sign = other ? -1 : 1;
             out.i[h] = other ? j : i;
             out.j[h] = other ? i : j;
+            sign[h] = other ? -1.0 : 1.0;
             if (out.shifts != nullptr) {
-                out.shifts[3 * h] = sign * sa;
-                out.shifts[3 * h + 1] = sign * sb;
-                out.shifts[3 * h + 2] = sign * sc;
+                const int flipped = other ? -1 : 1;
+                out.shifts[3 * h] = flipped * sa;
+                out.shifts[3 * h + 1] = flipped * sb;
+                out.shifts[3 * h + 2] = flipped * sc;
             }
-            turned[turns] = h;
-            turns += other ? 1u : 0u;
-        }
-        bool all_count = true;
-        for (std::uint32_t t = 0; t < turns; ++t) {
-            const std::uint32_t h = turned[t];
-            const std::uint32_t a = side.a[hits[h] / kernel_block];
-            const std::uint32_t b = start + hits[h] % kernel_block;
-            double dx, dy, dz;
-            d_sq[h] = turned_around(a, b, s, dx, dy, dz);
-            all_count = all_count && d_sq[h] < cutoff_sq_;
-        }
-        if (!all_count) {
-            keep_some(side, start, hits, d_sq, found, s);
-            return;
         }
         PairSink::put_distances(out, d_sq, found);
+        if (out.vectors != nullptr) {
+            for (std::uint32_t h = 0; h < found; ++h) {
+                const std::uint32_t g = hits[h] / kernel_block;
+                const std::uint32_t b = start + hits[h] % kernel_block;
+                out.vectors[3 * h] = sign[h] * ((x_[b] - side.x[g]) + s.v[0]) + 0.0;
+                out.vectors[3 * h + 1] = sign[h] * ((y_[b] - side.y[g]) + s.v[1]) + 0.0;
+                out.vectors[3 * h + 2] = sign[h] * ((z_[b] - side.z[g]) + s.v[2]) + 0.0;
+            }
+        }
         sink_.commit(found);
     }
 
@@ -362,7 +355,7 @@ class CandidateScanner {
     // filled by its own short loop (pair by pair through PairSink::put(), the branches per
     // stored column and the scalar square root cost more than the stores themselves).
     void keep_all(const Side& side, std::uint32_t start, const std::uint32_t* hits,
-                  const double* d_sq, std::uint32_t found) {
+                  const double* d_sq, std::uint32_t found, const ImageShift& s) {
         const PairSink::Slots out = sink_.claim(found);
         for (std::uint32_t h = 0; h < found; ++h) {
             out.i[h] = side.i[hits[h] / kernel_block];
@@ -383,9 +376,9 @@ class CandidateScanner {
             for (std::uint32_t h = 0; h < found; ++h) {
                 const std::uint32_t g = hits[h] / kernel_block;
                 const std::uint32_t b = start + hits[h] % kernel_block;
-                out.vectors[3 * h] = x_[b] - side.x[g];
-                out.vectors[3 * h + 1] = y_[b] - side.y[g];
-                out.vectors[3 * h + 2] = z_[b] - side.z[g];
+                out.vectors[3 * h] = ((x_[b] - side.x[g]) + s.v[0]) + 0.0;
+                out.vectors[3 * h + 1] = ((y_[b] - side.y[g]) + s.v[1]) + 0.0;
+                out.vectors[3 * h + 2] = ((z_[b] - side.z[g]) + s.v[2]) + 0.0;
             }
         }
         sink_.commit(found);
@@ -412,49 +405,36 @@ class CandidateScanner {
                    d_sq};
     }
 
-    // Whether hit p of (a, b) through s counts, oriented for a half list: a half list reports
-    // (j, i, -S) when that is the canonical orientation, with D computed in that orientation,
-    // x_a - (x_b - H (-s)), so that d and D do not depend on which atom a backend happened to
-    // scan first (the contract: identical d and D whatever the backend); the test is redone on
-    // it. Then a variable cutoff decides.
-    bool counts(std::uint32_t a, std::uint32_t b, const ImageShift& s, Hit& p) const {
+    // Whether hit p counts, oriented for a half list: a half list reports (j, i, -S) with -D
+    // when that is the canonical orientation (exactly what the other orientation's scan
+    // computes, see above). Then a variable cutoff decides.
+    bool counts(Hit& p) const {
         if (half_ && flip(p.i, p.j, p.sa, p.sb, p.sc)) {
             std::swap(p.i, p.j);
             p.sa = -p.sa;
             p.sb = -p.sb;
             p.sc = -p.sc;
-            p.d_sq = turned_around(a, b, s, p.dx, p.dy, p.dz);
-            if (!(p.d_sq < cutoff_sq_)) {
-                return false;
-            }
+            p.dx = -p.dx;
+            p.dy = -p.dy;
+            p.dz = -p.dz;
         }
         return rule_.uniform() || rule_.accepts(p.i, p.j, p.d_sq);
     }
 
-    // D of the pair (a, b) through s computed from b's side, x_a - (x_b - H (-s)), and its d^2.
-    double turned_around(std::uint32_t a, std::uint32_t b, const ImageShift& s, double& dx,
-                         double& dy, double& dz) const {
-        dx = x_[a] - (x_[b] + s.vx);
-        dy = y_[a] - (y_[b] + s.vy);
-        dz = z_[a] - (z_[b] + s.vz);
-        return dx * dx + dy * dy + dz * dz;
-    }
-
     // A hit (a, b) through s found one pair at a time.
-    void hit(std::uint32_t a, std::uint32_t b, std::uint32_t i, int sa_a, int sb_a, int sc_a,
-             const ImageShift& s, double dx, double dy, double dz, double d_sq) {
+    void hit(std::uint32_t b, std::uint32_t i, int sa_a, int sb_a, int sc_a, double dx, double dy,
+             double dz, double d_sq) {
         Hit p = make_hit(b, i, sa_a, sb_a, sc_a, dx, dy, dz, d_sq);
         if (subset_half_ && query_[b] != 0 && flip(p.i, p.j, p.sa, p.sb, p.sc)) {
             return; // kept when found from b
         }
-        if (counts(a, b, s, p)) {
-            sink_.add(p.i, p.j, p.sa, p.sb, p.sc, p.dx, p.dy, p.dz, p.d_sq);
+        if (counts(p)) {
+            sink_.add(p.i, p.j, p.sa, p.sb, p.sc, p.dx + 0.0, p.dy + 0.0, p.dz + 0.0, p.d_sq);
         }
     }
 
     // Half lists keep (i, j, S) with i < j, or i == j with S lexicographically positive in the
-    // caller's frame; true when the found orientation is the other one (keep_oriented()
-    // recomputes D only for the pairs turned around).
+    // caller's frame; true when the found orientation is the other one.
     bool flip(std::uint32_t i, std::uint32_t j, int sa, int sb, int sc) const {
         if (i != j) {
             return i > j;

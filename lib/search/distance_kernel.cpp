@@ -16,11 +16,12 @@ namespace {
 // (Hit k is recorded as label + k.)
 std::uint32_t within_cutoff_generic(const double* x, const double* y, const double* z,
                                     std::uint32_t count, double ax, double ay, double az,
-                                    double cutoff_sq, std::uint32_t* hits, double* hit_d_sq,
-                                    std::uint32_t label) {
+                                    const double* shift, double cutoff_sq, std::uint32_t* hits,
+                                    double* hit_d_sq, std::uint32_t label) {
+    const double vx = shift[0], vy = shift[1], vz = shift[2];
     double d_sq[kernel_block];
     for (std::uint32_t k = 0; k < count; ++k) {
-        const double dx = x[k] - ax, dy = y[k] - ay, dz = z[k] - az;
+        const double dx = (x[k] - ax) + vx, dy = (y[k] - ay) + vy, dz = (z[k] - az) + vz;
         d_sq[k] = dx * dx + dy * dy + dz * dz;
     }
     std::uint32_t found = 0;
@@ -34,18 +35,20 @@ std::uint32_t within_cutoff_generic(const double* x, const double* y, const doub
 
 std::uint32_t within_cutoff_one_generic(const double* x, const double* y, const double* z,
                                         std::uint32_t count, double ax, double ay, double az,
-                                        double cutoff_sq, std::uint32_t* hits, double* hit_d_sq) {
-    return within_cutoff_generic(x, y, z, count, ax, ay, az, cutoff_sq, hits, hit_d_sq, 0);
+                                        const double* shift, double cutoff_sq, std::uint32_t* hits,
+                                        double* hit_d_sq) {
+    return within_cutoff_generic(x, y, z, count, ax, ay, az, shift, cutoff_sq, hits, hit_d_sq, 0);
 }
 
 std::uint32_t within_cutoff_group_generic(const double* x, const double* y, const double* z,
                                           std::uint32_t count, const double* ax, const double* ay,
-                                          const double* az, std::uint32_t group, double cutoff_sq,
+                                          const double* az, std::uint32_t group,
+                                          const double* shift, double cutoff_sq,
                                           std::uint32_t* hits, double* hit_d_sq) {
     std::uint32_t found = 0;
     for (std::uint32_t g = 0; g < group; ++g) {
-        found += within_cutoff_generic(x, y, z, count, ax[g], ay[g], az[g], cutoff_sq, hits + found,
-                                       hit_d_sq + found, g * kernel_block);
+        found += within_cutoff_generic(x, y, z, count, ax[g], ay[g], az[g], shift, cutoff_sq,
+                                       hits + found, hit_d_sq + found, g * kernel_block);
     }
     return found;
 }
@@ -82,18 +85,26 @@ const CompressTables compress_tables;
 // AVX2: four distances at a time (mul and add, no FMA, same order as the generic loop), then the
 // hits are compressed with a lane permutation from a 16-entry table: no branch per hit.
 // (Hit k is recorded as label + k.)
+template <bool Shifted>
 __attribute__((target("avx2"))) inline std::uint32_t
 within_cutoff_avx2(const double* x, const double* y, const double* z, std::uint32_t count,
-                   double ax, double ay, double az, double cutoff_sq, std::uint32_t* hits,
-                   double* hit_d_sq, std::uint32_t label) {
+                   double ax, double ay, double az, const double* shift, double cutoff_sq,
+                   std::uint32_t* hits, double* hit_d_sq, std::uint32_t label) {
     const __m256d vax = _mm256_set1_pd(ax), vay = _mm256_set1_pd(ay), vaz = _mm256_set1_pd(az);
+    const __m256d vvx = _mm256_set1_pd(shift[0]), vvy = _mm256_set1_pd(shift[1]),
+                  vvz = _mm256_set1_pd(shift[2]);
     const __m256d vcut = _mm256_set1_pd(cutoff_sq);
     std::uint32_t found = 0;
     std::uint32_t k = 0;
     for (; k + 4 <= count; k += 4) {
-        const __m256d dx = _mm256_sub_pd(_mm256_loadu_pd(x + k), vax);
-        const __m256d dy = _mm256_sub_pd(_mm256_loadu_pd(y + k), vay);
-        const __m256d dz = _mm256_sub_pd(_mm256_loadu_pd(z + k), vaz);
+        __m256d dx = _mm256_sub_pd(_mm256_loadu_pd(x + k), vax);
+        __m256d dy = _mm256_sub_pd(_mm256_loadu_pd(y + k), vay);
+        __m256d dz = _mm256_sub_pd(_mm256_loadu_pd(z + k), vaz);
+        if constexpr (Shifted) {
+            dx = _mm256_add_pd(dx, vvx);
+            dy = _mm256_add_pd(dy, vvy);
+            dz = _mm256_add_pd(dz, vvz);
+        }
         const __m256d d_sq = _mm256_add_pd(
             _mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy)), _mm256_mul_pd(dz, dz));
         const int mask = _mm256_movemask_pd(_mm256_cmp_pd(d_sq, vcut, _CMP_LT_OQ));
@@ -108,7 +119,8 @@ within_cutoff_avx2(const double* x, const double* y, const double* z, std::uint3
         found += static_cast<std::uint32_t>(__builtin_popcount(static_cast<unsigned>(mask)));
     }
     for (; k < count; ++k) {
-        const double dx = x[k] - ax, dy = y[k] - ay, dz = z[k] - az;
+        const double dx = (x[k] - ax) + shift[0], dy = (y[k] - ay) + shift[1],
+                     dz = (z[k] - az) + shift[2];
         const double d_sq = dx * dx + dy * dy + dz * dz;
         hits[found] = label + k;
         hit_d_sq[found] = d_sq;
@@ -119,19 +131,32 @@ within_cutoff_avx2(const double* x, const double* y, const double* z, std::uint3
 
 __attribute__((target("avx2"))) std::uint32_t
 within_cutoff_one_avx2(const double* x, const double* y, const double* z, std::uint32_t count,
-                       double ax, double ay, double az, double cutoff_sq, std::uint32_t* hits,
-                       double* hit_d_sq) {
-    return within_cutoff_avx2(x, y, z, count, ax, ay, az, cutoff_sq, hits, hit_d_sq, 0);
+                       double ax, double ay, double az, const double* shift, double cutoff_sq,
+                       std::uint32_t* hits, double* hit_d_sq) {
+    return within_cutoff_avx2<true>(x, y, z, count, ax, ay, az, shift, cutoff_sq, hits, hit_d_sq,
+                                    0);
 }
 
 __attribute__((target("avx2"))) std::uint32_t
 within_cutoff_group_avx2(const double* x, const double* y, const double* z, std::uint32_t count,
                          const double* ax, const double* ay, const double* az, std::uint32_t group,
-                         double cutoff_sq, std::uint32_t* hits, double* hit_d_sq) {
+                         const double* shift, double cutoff_sq, std::uint32_t* hits,
+                         double* hit_d_sq) {
+    // A zero shift (most cell pairs of a large box) adds nothing: (x_b - x_a) + 0 and x_b - x_a
+    // differ at most in the sign of a zero, which d^2 does not see.
+    if (shift[0] == 0 && shift[1] == 0 && shift[2] == 0) {
+        std::uint32_t found = 0;
+        for (std::uint32_t g = 0; g < group; ++g) {
+            found +=
+                within_cutoff_avx2<false>(x, y, z, count, ax[g], ay[g], az[g], shift, cutoff_sq,
+                                          hits + found, hit_d_sq + found, g * kernel_block);
+        }
+        return found;
+    }
     std::uint32_t found = 0;
     for (std::uint32_t g = 0; g < group; ++g) {
-        found += within_cutoff_avx2(x, y, z, count, ax[g], ay[g], az[g], cutoff_sq, hits + found,
-                                    hit_d_sq + found, g * kernel_block);
+        found += within_cutoff_avx2<true>(x, y, z, count, ax[g], ay[g], az[g], shift, cutoff_sq,
+                                          hits + found, hit_d_sq + found, g * kernel_block);
     }
     return found;
 }
@@ -140,19 +165,27 @@ within_cutoff_group_avx2(const double* x, const double* y, const double* z, std:
 // whole (kernel_slack), the last partial group through masked loads instead of a scalar tail
 // (rows hold ~20 atoms on diamond Si, so the tail was a large part). Same operations in the
 // same order as the other versions; the file is compiled without contraction into FMAs.
+template <bool Shifted>
 __attribute__((target("avx512f,avx512vl"))) inline std::uint32_t
 within_cutoff_avx512(const double* x, const double* y, const double* z, std::uint32_t count,
-                     double ax, double ay, double az, double cutoff_sq, std::uint32_t* hits,
-                     double* hit_d_sq, std::uint32_t label) {
+                     double ax, double ay, double az, const double* shift, double cutoff_sq,
+                     std::uint32_t* hits, double* hit_d_sq, std::uint32_t label) {
     const __m512d vax = _mm512_set1_pd(ax), vay = _mm512_set1_pd(ay), vaz = _mm512_set1_pd(az);
+    const __m512d vvx = _mm512_set1_pd(shift[0]), vvy = _mm512_set1_pd(shift[1]),
+                  vvz = _mm512_set1_pd(shift[2]);
     const __m512d vcut = _mm512_set1_pd(cutoff_sq);
     const __m256i lanes = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
     std::uint32_t found = 0;
     for (std::uint32_t k = 0; k < count; k += 8) {
         const __mmask8 valid = count - k >= 8 ? __mmask8(0xFF) : __mmask8((1u << (count - k)) - 1);
-        const __m512d dx = _mm512_sub_pd(_mm512_maskz_loadu_pd(valid, x + k), vax);
-        const __m512d dy = _mm512_sub_pd(_mm512_maskz_loadu_pd(valid, y + k), vay);
-        const __m512d dz = _mm512_sub_pd(_mm512_maskz_loadu_pd(valid, z + k), vaz);
+        __m512d dx = _mm512_sub_pd(_mm512_maskz_loadu_pd(valid, x + k), vax);
+        __m512d dy = _mm512_sub_pd(_mm512_maskz_loadu_pd(valid, y + k), vay);
+        __m512d dz = _mm512_sub_pd(_mm512_maskz_loadu_pd(valid, z + k), vaz);
+        if constexpr (Shifted) {
+            dx = _mm512_add_pd(dx, vvx);
+            dy = _mm512_add_pd(dy, vvy);
+            dz = _mm512_add_pd(dz, vvz);
+        }
         const __m512d d_sq = _mm512_add_pd(
             _mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy)), _mm512_mul_pd(dz, dz));
         const __mmask8 hit = _mm512_mask_cmp_pd_mask(valid, d_sq, vcut, _CMP_LT_OQ);
@@ -168,20 +201,32 @@ within_cutoff_avx512(const double* x, const double* y, const double* z, std::uin
 
 __attribute__((target("avx512f,avx512vl"))) std::uint32_t
 within_cutoff_one_avx512(const double* x, const double* y, const double* z, std::uint32_t count,
-                         double ax, double ay, double az, double cutoff_sq, std::uint32_t* hits,
-                         double* hit_d_sq) {
-    return within_cutoff_avx512(x, y, z, count, ax, ay, az, cutoff_sq, hits, hit_d_sq, 0);
+                         double ax, double ay, double az, const double* shift, double cutoff_sq,
+                         std::uint32_t* hits, double* hit_d_sq) {
+    return within_cutoff_avx512<true>(x, y, z, count, ax, ay, az, shift, cutoff_sq, hits, hit_d_sq,
+                                      0);
 }
 
 __attribute__((target("avx512f,avx512vl"))) std::uint32_t
 within_cutoff_group_avx512(const double* x, const double* y, const double* z, std::uint32_t count,
                            const double* ax, const double* ay, const double* az,
-                           std::uint32_t group, double cutoff_sq, std::uint32_t* hits,
-                           double* hit_d_sq) {
+                           std::uint32_t group, const double* shift, double cutoff_sq,
+                           std::uint32_t* hits, double* hit_d_sq) {
+    // A zero shift (most cell pairs of a large box) adds nothing: (x_b - x_a) + 0 and x_b - x_a
+    // differ at most in the sign of a zero, which d^2 does not see.
+    if (shift[0] == 0 && shift[1] == 0 && shift[2] == 0) {
+        std::uint32_t found = 0;
+        for (std::uint32_t g = 0; g < group; ++g) {
+            found +=
+                within_cutoff_avx512<false>(x, y, z, count, ax[g], ay[g], az[g], shift, cutoff_sq,
+                                            hits + found, hit_d_sq + found, g * kernel_block);
+        }
+        return found;
+    }
     std::uint32_t found = 0;
     for (std::uint32_t g = 0; g < group; ++g) {
-        found += within_cutoff_avx512(x, y, z, count, ax[g], ay[g], az[g], cutoff_sq, hits + found,
-                                      hit_d_sq + found, g * kernel_block);
+        found += within_cutoff_avx512<true>(x, y, z, count, ax[g], ay[g], az[g], shift, cutoff_sq,
+                                            hits + found, hit_d_sq + found, g * kernel_block);
     }
     return found;
 }
@@ -240,16 +285,16 @@ std::vector<DistanceKernel> distance_kernels() {
 }
 
 std::uint32_t within_cutoff(const double* x, const double* y, const double* z, std::uint32_t count,
-                            double ax, double ay, double az, double cutoff_sq, std::uint32_t* hits,
-                            double* hit_d_sq) {
-    return chosen.one(x, y, z, count, ax, ay, az, cutoff_sq, hits, hit_d_sq);
+                            double ax, double ay, double az, const double* shift, double cutoff_sq,
+                            std::uint32_t* hits, double* hit_d_sq) {
+    return chosen.one(x, y, z, count, ax, ay, az, shift, cutoff_sq, hits, hit_d_sq);
 }
 
 std::uint32_t within_cutoff_group(const double* x, const double* y, const double* z,
                                   std::uint32_t count, const double* ax, const double* ay,
-                                  const double* az, std::uint32_t group, double cutoff_sq,
-                                  std::uint32_t* hits, double* hit_d_sq) {
-    return chosen.group(x, y, z, count, ax, ay, az, group, cutoff_sq, hits, hit_d_sq);
+                                  const double* az, std::uint32_t group, const double* shift,
+                                  double cutoff_sq, std::uint32_t* hits, double* hit_d_sq) {
+    return chosen.group(x, y, z, count, ax, ay, az, group, shift, cutoff_sq, hits, hit_d_sq);
 }
 
 void square_roots(const double* in, std::uint32_t count, double* out) {

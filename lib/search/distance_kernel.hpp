@@ -1,8 +1,12 @@
 // The innermost loop of the neighbour search: which points of a contiguous struct-of-arrays
 // range lie within the cutoff of one point. Compiled once per instruction set in the library
 // and chosen at run time (AVX-512 or AVX2 where the processor has it, portable C++ otherwise), so
-// the default build stays portable. Both versions compute d^2 = dx*dx + dy*dy + dz*dz in the same
-// order without fused multiply-adds, so their results are bit for bit the same.
+// the default build stays portable. Every version rounds the same operations in the same order,
+// without fused multiply-adds, so their results are bit for bit the same: the difference vector
+// is (x_b - x_a) + T, the positions' difference first and then the Cartesian image translation
+// T, and d^2 = dx*dx + dy*dy + dz*dz. In that order the pair seen from b through -T has exactly
+// the negated vector (IEEE rounding is symmetric: fl(p - q) = -fl(q - p)) and the same d^2, so a
+// half list turns pairs around without computing anything again.
 #pragma once
 
 #include <cstdint>
@@ -18,35 +22,37 @@ constexpr std::uint32_t kernel_block = 64;
 /// `hit_d_sq` need count + kernel_slack slots.
 constexpr std::uint32_t kernel_slack = 8;
 
-/// For k in [0, count): if (x[k]-ax)^2 + (y[k]-ay)^2 + (z[k]-az)^2 < cutoff_sq, appends k to
-/// hits and the squared distance to hit_d_sq. Returns the number of hits. count <= kernel_block.
+/// For k in [0, count), with D = ((x[k] - ax) + shift[0], (y[k] - ay) + shift[1],
+/// (z[k] - az) + shift[2]): if |D|^2 < cutoff_sq, appends k to hits and |D|^2 to hit_d_sq.
+/// Returns the number of hits. count <= kernel_block.
 TRICELL_API std::uint32_t within_cutoff(const double* x, const double* y, const double* z,
                                         std::uint32_t count, double ax, double ay, double az,
-                                        double cutoff_sq, std::uint32_t* hits, double* hit_d_sq);
+                                        const double* shift, double cutoff_sq, std::uint32_t* hits,
+                                        double* hit_d_sq);
 
 /// Largest number of points within_cutoff_group() takes on its own side.
 constexpr std::uint32_t kernel_group = 8;
 
-/// within_cutoff() for `group` points (ax[g], ay[g], az[g]) against the same range in one call,
+/// within_cutoff() for `group` points (ax[g], ay[g], az[g]) against the same range through the
+/// same shift in one call,
 /// g in order: hit k of point g is appended as g * kernel_block + k. A cell of a few atoms
 /// against a row of its neighbours is one call instead of one per atom (the per-call cost
 /// was as large as the tests on diamond Si, whose rows hold ~20 atoms). group <=
 /// kernel_group, count <= kernel_block; hits and hit_d_sq need group * count + kernel_slack
 /// slots.
-TRICELL_API std::uint32_t within_cutoff_group(const double* x, const double* y, const double* z,
-                                              std::uint32_t count, const double* ax,
-                                              const double* ay, const double* az,
-                                              std::uint32_t group, double cutoff_sq,
-                                              std::uint32_t* hits, double* hit_d_sq);
+TRICELL_API std::uint32_t
+within_cutoff_group(const double* x, const double* y, const double* z, std::uint32_t count,
+                    const double* ax, const double* ay, const double* az, std::uint32_t group,
+                    const double* shift, double cutoff_sq, std::uint32_t* hits, double* hit_d_sq);
 
 /// One instruction set's within_cutoff() and within_cutoff_group().
 struct DistanceKernel {
     const char* name; ///< "avx512", "avx2" or "generic"
     std::uint32_t (*one)(const double*, const double*, const double*, std::uint32_t, double, double,
-                         double, double, std::uint32_t*, double*);
+                         double, const double*, double, std::uint32_t*, double*);
     std::uint32_t (*group)(const double*, const double*, const double*, std::uint32_t,
-                           const double*, const double*, const double*, std::uint32_t, double,
-                           std::uint32_t*, double*);
+                           const double*, const double*, const double*, std::uint32_t,
+                           const double*, double, std::uint32_t*, double*);
 };
 
 /// Every kernel this processor can run, fastest first: the first is the one within_cutoff()

@@ -4,6 +4,7 @@
 // with the dense one pair for pair.
 #include <algorithm>
 #include <cstdint>
+#include <cstring>
 #include <numeric>
 #include <random>
 
@@ -205,6 +206,61 @@ TYPED_TEST(NeighborProperty, SameListAsTheDenseBackend_RandomCases) {
             ASSERT_EQ(expected.shifts(), actual.shifts());
             ASSERT_EQ(expected.distances(), actual.distances()); // bit for bit
             ASSERT_EQ(expected.vectors(), actual.vectors());
+        }
+    }
+}
+
+// The bits of a double (+0 and -0 differ).
+std::uint64_t bits(double v) {
+    std::uint64_t out;
+    std::memcpy(&out, &v, sizeof out);
+    return out;
+}
+
+// D is rounded as (x_j - x_i) + H S with a zero component stored as +0 (docs/contract.md), so
+// it is a function of (i, j, S) alone: (j, i, -S) has exactly -D (a zero stays +0) and the same
+// d, and a half list's pair has the full list's D and d of the same (i, j, S), bit for bit,
+// whichever orientation the backend found it in. With a uniform cutoff and with per-atom radii
+// (the variable-cutoff path orients pair by pair).
+TYPED_TEST(NeighborProperty, HalfAndReversedPairsHaveExactlyNegatedVectors_RandomCases) {
+    const auto negated = [](double v) { return v == 0.0 ? 0.0 : -v; };
+    for (std::uint64_t seed = 3; seed < case_count; seed += 4) {
+        const RandomSystem sys = tricell::testing::random_system(seed);
+        if (this->skip(sys)) {
+            continue;
+        }
+        SCOPED_TRACE(testing::Message() << "seed " << seed << " (" << sys.kind << ")");
+        NeighborOptions o = this->options(seed, sys.cutoff);
+        if (seed % 8 == 7 && !sys.positions.empty()) {
+            std::mt19937_64 rng(seed);
+            std::uniform_real_distribution<double> unit(0.2, 0.5);
+            o.radii.resize(sys.positions.size());
+            for (double& r : o.radii) {
+                r = unit(rng) * sys.cutoff;
+            }
+            o.cutoff = 0;
+        }
+        const PairMap full = tricell::testing::to_map(run(sys, o, false));
+        const PairMap half = tricell::testing::to_map(run(sys, o, true));
+        for (const auto& [key, value] : full) {
+            const auto& [i, j, a, b, c] = key;
+            const auto reverse = full.find({j, i, -a, -b, -c});
+            ASSERT_NE(reverse, full.end());
+            ASSERT_EQ(bits(reverse->second.distance), bits(value.distance));
+            for (int k = 0; k < 3; ++k) {
+                ASSERT_EQ(bits(value.vector[k]), bits(value.vector[k] + 0.0)) << "a -0 in D";
+                ASSERT_EQ(bits(reverse->second.vector[k]), bits(negated(value.vector[k])))
+                    << "i " << i << " j " << j << " S (" << a << "," << b << "," << c << ")";
+            }
+        }
+        ASSERT_EQ(2 * half.size(), full.size());
+        for (const auto& [key, value] : half) {
+            const auto same = full.find(key);
+            ASSERT_NE(same, full.end());
+            ASSERT_EQ(bits(same->second.distance), bits(value.distance));
+            for (int k = 0; k < 3; ++k) {
+                ASSERT_EQ(bits(same->second.vector[k]), bits(value.vector[k]));
+            }
         }
     }
 }

@@ -27,24 +27,29 @@ TEST(DistanceKernel, EveryKernelMatchesThePortableOneBitForBit) {
         for (int trial = 0; trial < 2000; ++trial) {
             const std::uint32_t count = std::uint32_t(trial) % (kernel_block + 1);
             const double ax = u(rng) / 3, ay = u(rng) / 3, az = u(rng) / 3;
+            // A cell shift on every other trial (none on the rest: the plain difference).
+            const double shift[3] = {trial % 2 ? u(rng) : 0.0, trial % 2 ? u(rng) : 0.0,
+                                     trial % 2 ? u(rng) : 0.0};
             std::vector<double> x(count), y(count), z(count);
             for (std::uint32_t k = 0; k < count; ++k) {
                 x[k] = u(rng), y[k] = u(rng), z[k] = u(rng);
             }
             if (count > 3) {
-                x[1] = ax + 2.0, y[1] = ay, z[1] = az; // exactly at the cutoff: not a hit
+                x[1] = ax + 2.0, y[1] = ay, z[1] = az; // at the cutoff when unshifted: no hit
             }
             const double cutoff_sq = 4.0;
             std::uint32_t hits_a[kernel_block + kernel_slack], hits_b[kernel_block + kernel_slack];
             double d_a[kernel_block + kernel_slack], d_b[kernel_block + kernel_slack];
-            const std::uint32_t found_a =
-                kernel.one(x.data(), y.data(), z.data(), count, ax, ay, az, cutoff_sq, hits_a, d_a);
-            const std::uint32_t found_b = kernels.back().one(x.data(), y.data(), z.data(), count,
-                                                             ax, ay, az, cutoff_sq, hits_b, d_b);
+            const std::uint32_t found_a = kernel.one(x.data(), y.data(), z.data(), count, ax, ay,
+                                                     az, shift, cutoff_sq, hits_a, d_a);
+            const std::uint32_t found_b = kernels.back().one(
+                x.data(), y.data(), z.data(), count, ax, ay, az, shift, cutoff_sq, hits_b, d_b);
             ASSERT_EQ(found_a, found_b) << "trial " << trial;
             std::uint32_t expected = 0;
             for (std::uint32_t k = 0; k < count; ++k) {
-                const double dx = x[k] - ax, dy = y[k] - ay, dz = z[k] - az;
+                // D = (x_b - x_a) + T, in that order
+                const double dx = (x[k] - ax) + shift[0], dy = (y[k] - ay) + shift[1],
+                             dz = (z[k] - az) + shift[2];
                 expected += dx * dx + dy * dy + dz * dz < cutoff_sq ? 1u : 0u;
             }
             ASSERT_EQ(found_a, expected) << "trial " << trial;
@@ -96,13 +101,17 @@ TEST(DistanceKernel, GroupKernelsMatchOnePointCallsInOrder) {
             for (std::uint32_t g = 0; g < group; ++g) {
                 ax[g] = u(rng) / 2, ay[g] = u(rng) / 2, az[g] = u(rng) / 2;
             }
+            // A zero shift on every third trial (the kernels skip adding it).
+            const bool zero = trial % 3 == 0;
+            const double shift[3] = {zero ? 0.0 : u(rng), zero ? -0.0 : u(rng),
+                                     zero ? 0.0 : u(rng)};
             std::vector<std::uint32_t> expected_hits;
             std::vector<double> expected_d;
             for (std::uint32_t g = 0; g < group; ++g) {
                 std::uint32_t hits[kernel_block + kernel_slack];
                 double d[kernel_block + kernel_slack];
-                const std::uint32_t found = kernels.back().one(x.data(), y.data(), z.data(), count,
-                                                               ax[g], ay[g], az[g], 4.0, hits, d);
+                const std::uint32_t found = kernels.back().one(
+                    x.data(), y.data(), z.data(), count, ax[g], ay[g], az[g], shift, 4.0, hits, d);
                 for (std::uint32_t h = 0; h < found; ++h) {
                     expected_hits.push_back(g * kernel_block + hits[h]);
                     expected_d.push_back(d[h]);
@@ -112,7 +121,7 @@ TEST(DistanceKernel, GroupKernelsMatchOnePointCallsInOrder) {
             std::vector<double> d(group * count + kernel_slack);
             const std::uint32_t found =
                 kernel.group(x.data(), y.data(), z.data(), count, ax.data(), ay.data(), az.data(),
-                             group, 4.0, hits.data(), d.data());
+                             group, shift, 4.0, hits.data(), d.data());
             ASSERT_EQ(found, expected_hits.size());
             for (std::uint32_t h = 0; h < found; ++h) {
                 ASSERT_EQ(hits[h], expected_hits[h]);

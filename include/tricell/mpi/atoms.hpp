@@ -19,6 +19,7 @@
 #include "tricell/box.hpp"
 #include "tricell/mpi/decomposition.hpp"
 #include "tricell/mpi/export.hpp"
+#include "tricell/mpi/traffic.hpp"
 #include "tricell/types.hpp"
 
 namespace tricell::mpi {
@@ -49,9 +50,10 @@ TRICELL_MPI_API void migrate(const Decomposition& decomposition, const Box& box,
 /// interval: an atom moves less than the halo reach), one MPI_Allreduce agrees on it and each
 /// rank exchanges one message with each neighbour, so nothing grows with the number of ranks;
 /// the result (order included) is migrate()'s. Otherwise it is migrate(). Returns true when
-/// the neighbours sufficed.
+/// the neighbours sufficed. With `sent`, adds the messages and bytes this rank sent to its
+/// neighbours (one message each, (4 + payload_width) doubles per atom).
 TRICELL_MPI_API bool migrate(const Decomposition& decomposition, const Box& box, LocalAtoms& atoms,
-                             const std::vector<int>& neighbors);
+                             const std::vector<int>& neighbors, Traffic* sent = nullptr);
 
 /// Collective: true on every rank when every atom on every rank is owned by its rank.
 TRICELL_MPI_API bool all_owned(const Decomposition& decomposition, const Box& box,

@@ -25,7 +25,8 @@
 // through some T, a symmetric relation both sides compute from the boundaries alone; each pair
 // of neighbour ranks exchanges exactly one message per exchange (empty or not), point to point
 // (MPI_Isend, then MPI_Probe / MPI_Get_count / MPI_Recv). update() re-sends the same ghosts with
-// fresh positions (the Verlet steps between rebuilds), into the same slots.
+// fresh positions and images only (the Verlet steps between rebuilds), into the same slots;
+// images of a rank's own atoms are written in place, not sent.
 //
 // Forward and reverse communication of per-atom values (LAMMPS's forward_comm / reverse_comm).
 // forward() copies `width` doubles per owned atom into every ghost of it (charges, densities,
@@ -60,6 +61,11 @@ struct HaloStats {
 
 class TRICELL_MPI_API Halo {
   public:
+    /// Bytes per ghost on the wire: a build sends id, position, image, species and radius; an
+    /// update() sends the position and image.
+    static constexpr std::size_t build_record_bytes = 56;
+    static constexpr std::size_t update_record_bytes = 40;
+
     /// Collective. Selects and exchanges the ghosts within `reach` (Cartesian, > 0) of each
     /// domain. radii / species, when not null (on every rank alike), hold one value per owned
     /// atom and travel with the ghosts. positions are the owned atoms' caller positions; every atom
@@ -115,7 +121,9 @@ class TRICELL_MPI_API Halo {
         std::uint32_t atom;
         std::int32_t t[3];
     };
-    void exchange(const Decomposition& decomposition, const Box& box, bool first);
+    // The build's exchange of ghost records (and their slots), and update()'s of positions.
+    void exchange(const Decomposition& decomposition, const Box& box);
+    void send_positions(const Decomposition& decomposition, const Box& box);
     // The first local slot of the ghosts received from neighbour n.
     std::size_t first_slot(std::size_t n) const;
     void check_values(const Decomposition& decomposition, const std::vector<double>& values,

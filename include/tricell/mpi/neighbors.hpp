@@ -42,10 +42,10 @@ namespace tricell::mpi {
 /// Quantities asks.
 struct TRICELL_MPI_API DistributedPairs : BasicPairColumns<std::uint64_t> {
     /// Index of i among the caller's owned atoms (LocalAtoms order), per pair.
-    std::vector<std::uint32_t> owned;
+    PairArray<std::uint32_t> owned;
     /// Index of j among the halo's local atoms (owned first, in LocalAtoms order, then ghosts),
     /// per pair: where a force loop puts the force on j before Halo::reverse_sum().
-    std::vector<std::uint32_t> local_j;
+    PairArray<std::uint32_t> local_j;
 
     /// Empties the lists, keeping their capacity.
     void clear() {
