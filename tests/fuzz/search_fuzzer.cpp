@@ -1,6 +1,7 @@
 // Differential libFuzzer harness for the neighbour search: the input bytes choose a box, a few
-// positions, a cutoff and the options; every search backend computes the list, and each
-// result is compared with the brute-force oracle (tests/support/brute_force.hpp).
+// positions, a cutoff and the options; search backends compute the list (two of them per input,
+// every one on a sample of the inputs; see plan_engines()), and each result is compared with the
+// brute-force oracle (tests/support/brute_force.hpp).
 //
 // The bytes are read through FuzzedDataProvider as a small program of choices, each drawn from
 // the cases the contract singles out: boxes that are skewed (tilts of several box lengths),
