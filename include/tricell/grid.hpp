@@ -69,10 +69,13 @@ class TRICELL_API CellGrid {
     bool capped() const { return capped_; }
 
     /// Cell coordinate along an axis of a fractional coordinate (wrapped into [0, 1) on a
-    /// periodic axis); clamped into [0, n - 1] against rounding at the upper edge.
+    /// periodic axis); clamped into [0, n - 1] against rounding at the upper edge. Clamped
+    /// before the cast: on an open axis whose span overflowed (coordinates near +-1e308 apart)
+    /// the cell size is infinite and an atom at an infinite distance from the origin is at
+    /// inf * 0 = NaN cells, which goes to cell 0 with every other atom there (search fuzzer).
     int coordinate(int axis, double s) const {
-        const int c = static_cast<int>((s - origin_[axis]) * inverse_size_[axis]);
-        return c < 0 ? 0 : (c >= dims_[axis] ? dims_[axis] - 1 : c);
+        const double c = (s - origin_[axis]) * inverse_size_[axis];
+        return c >= 1 ? (c < dims_[axis] ? static_cast<int>(c) : dims_[axis] - 1) : 0;
     }
     /// Flat index of a cell; the c coordinate varies fastest.
     std::size_t flat(int ca, int cb, int cc) const {

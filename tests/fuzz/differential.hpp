@@ -9,6 +9,7 @@
 // and aborts, so that libFuzzer keeps the input.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -16,6 +17,7 @@
 #include <cstdlib>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <tricell/box.hpp>
@@ -33,6 +35,23 @@ using testing::PairMap;
 [[noreturn]] inline void broken(const std::string& what) {
     std::fprintf(stderr, "fuzzer: %s\n", what.c_str());
     std::abort();
+}
+
+/// A hash of an input's bytes (FNV-1a): a harness that checks a sample of its inputs in some way
+/// picks them by it, so that a replay of an input checks the same.
+inline std::uint32_t input_hash(const std::uint8_t* data, std::size_t size) {
+    std::uint32_t h = 2166136261u;
+    for (std::size_t k = 0; k < size; ++k) {
+        h = (h ^ data[k]) * 16777619u;
+    }
+    return h;
+}
+
+/// Whether every input gets every check (TRICELL_FUZZ_EVERY_CHECK set, as ctest's replays of the
+/// regressions and the corpus set it), not the sample input_hash() picks.
+inline bool every_check() {
+    static const bool every = std::getenv("TRICELL_FUZZ_EVERY_CHECK") != nullptr;
+    return every;
 }
 
 /// The promise of every refusal: a message of one non-empty line.
@@ -139,17 +158,58 @@ inline double oracle_distance(const Box& box, const std::vector<Eigen::Vector3d>
     return (x[j] - x[i] + box.matrix() * Eigen::Vector3d(a, b, c)).norm();
 }
 
-/// `found` against the oracle's `expected`; cutoff_of(i, j) is the cutoff of a pair.
+/// A list's pairs as rows sorted by key, what compare() walks: cheaper to build than a PairMap
+/// (one allocation, not one a pair), which at a few thousand pairs a list was most of an input's
+/// time.
+using PairRows = std::vector<std::pair<PairKey, testing::PairValue>>;
+
+/// Sorts `rows` by key; a key twice is a defect of the list `engine` made.
+inline void sort_rows(PairRows& rows, const char* engine) {
+    std::sort(rows.begin(), rows.end(),
+              [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (std::size_t k = 1; k < rows.size(); ++k) {
+        if (rows[k - 1].first == rows[k].first) {
+            broken(std::string(engine) + ": the same pair twice in a list");
+        }
+    }
+}
+
+/// The oracle's pairs as rows (a map is sorted by key already).
+inline PairRows rows_of(const PairMap& pairs) {
+    return PairRows(pairs.begin(), pairs.end());
+}
+
+/// A stored list (shifts, distances and vectors stored) as sorted rows, in `out`.
+inline void rows_of(const NeighborList& list, const char* engine, PairRows& out) {
+    out.clear();
+    for (std::size_t k = 0; k < list.size(); ++k) {
+        const Shift s = list.shift(k);
+        out.emplace_back(PairKey{list.i()[k], list.j()[k], s[0], s[1], s[2]},
+                         testing::PairValue{list.distances()[k], list.vector(k)});
+    }
+    sort_rows(out, engine);
+}
+
+/// `found` against the oracle's `expected` (both sorted rows); cutoff_of(i, j) is the cutoff of
+/// a pair.
 template <class CutoffOf>
 void compare(const Box& box, const std::vector<Eigen::Vector3d>& x, const CutoffOf& cutoff_of,
-             const PairMap& expected, const PairMap& found, const char* engine) {
+             const PairRows& expected, const PairRows& found, const char* engine) {
     const Tolerance tolerance(box);
+    std::size_t e = 0;
     for (const auto& [key, value] : found) {
         const double cutoff = cutoff_of(std::get<0>(key), std::get<1>(key));
+        for (; e < expected.size() && expected[e].first < key; ++e) {
+            const auto& [missing, oracle] = expected[e];
+            const double c = cutoff_of(std::get<0>(missing), std::get<1>(missing));
+            if (!(std::abs(oracle.distance - c) <= tolerance(x, missing, c))) {
+                broken(std::string(engine) + ": missing pair at distance " +
+                       std::to_string(oracle.distance) + " for cutoff " + std::to_string(c));
+            }
+        }
         const double d = oracle_distance(box, x, key);
         const double tol = tolerance(x, key, cutoff);
-        const auto match = expected.find(key);
-        if (match == expected.end()) {
+        if (e == expected.size() || expected[e].first != key) {
             if (!(std::abs(d - cutoff) <= tol)) {
                 broken(std::string(engine) + ": extra pair at distance " + std::to_string(d) +
                        " for cutoff " + std::to_string(cutoff));
@@ -157,17 +217,18 @@ void compare(const Box& box, const std::vector<Eigen::Vector3d>& x, const Cutoff
             continue;
         }
         if (!(std::abs(value.distance - d) <= tol) ||
-            !((value.vector - match->second.vector).norm() <= tol)) {
+            !((value.vector - expected[e].second.vector).norm() <= tol)) {
             broken(std::string(engine) + ": wrong distance or vector: " +
                    std::to_string(value.distance) + " instead of " + std::to_string(d));
         }
+        ++e;
     }
-    for (const auto& [key, value] : expected) {
-        const double cutoff = cutoff_of(std::get<0>(key), std::get<1>(key));
-        if (found.count(key) == 0 &&
-            !(std::abs(value.distance - cutoff) <= tolerance(x, key, cutoff))) {
+    for (; e < expected.size(); ++e) {
+        const auto& [missing, oracle] = expected[e];
+        const double c = cutoff_of(std::get<0>(missing), std::get<1>(missing));
+        if (!(std::abs(oracle.distance - c) <= tolerance(x, missing, c))) {
             broken(std::string(engine) + ": missing pair at distance " +
-                   std::to_string(value.distance) + " for cutoff " + std::to_string(cutoff));
+                   std::to_string(oracle.distance) + " for cutoff " + std::to_string(c));
         }
     }
 }

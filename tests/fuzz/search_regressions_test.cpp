@@ -137,6 +137,23 @@ TEST(SearchRegressions, DirectSpreadOfHugeCoordinatesIsNotNaN) {
 
 // A denormal extent along an open axis made the automatic choice's cell scale inf, and an atom
 // at the extent's origin got cell NaN, cast to an integer (UBSan).
+TEST(SearchRegressions, OpenSpanThatOverflowsPutsEveryAtomInOneCell) {
+    // Fractional coordinates about 1.5e308 apart on open axes: the span of the grid overflowed
+    // to inf, its cell size with it, and an atom at an infinite distance from the grid's origin
+    // was at inf * 0 = NaN cells, cast to int (undefined; seen under UBSan).
+    Eigen::Matrix3d h;
+    h << 4.5990795321831959, 38.465817681281656, 0, -1.3577722925005249, -7.5938578850253844,
+        7.6211316803418523, 1.4159526328134955, 7.9192535632841103, 7.307985587416967;
+    Case c{"open span past the largest double", h, {}, {}, {}};
+    c.pbc.axes = {false, false, false};
+    c.x = {{19.843137254874705, -1.520541218865301e+308, 1},
+           {0, 0, -2.6085842803901214e+307},
+           {-109.35155438551985, -1.520541218865301e+308, -48.929575350543722},
+           {19.843137254874705, -1.520541218865301e+308, 1}};
+    c.options.cutoff = 1e-300;
+    expect_oracle(c);
+}
+
 TEST(SearchRegressions, AutomaticChoiceWithADenormalOpenExtent) {
     Eigen::Matrix3d h;
     h << 5, 0, 0, 0, 5, 0, 0, 0, 1;
