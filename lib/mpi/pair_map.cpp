@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <numeric>
 #include <tuple>
-#include <type_traits>
 
 namespace tricell::mpi {
 
@@ -57,25 +56,13 @@ void sort_pairs(DistributedPairs& p) {
 
 namespace {
 
-// Output columns of map_pairs, written through raw pointers into arrays sized for the most
-// pairs there can be, trimmed to the pairs kept at the end.
-struct MappedColumns {
-    std::uint32_t* owned;
-    std::uint32_t* local_j;
-    std::uint64_t* i;
-    std::uint64_t* j;
-    std::int32_t* shifts;
-    double* distances;
-    double* vectors;
-};
-
 // Every local pair a -> b with a owned (and b -> a with b owned); with Half only the canonical
 // orientation of the pair, kept when its i end is owned (exactly one of the two orientations is
 // canonical, so the rule is decided once per local pair).
 template <bool Half, bool Shifts, bool Distances, bool Vectors>
 std::size_t map_columns(std::size_t count, const std::uint32_t* li, const std::uint32_t* lj,
                         const double* distances, const double* vectors, std::size_t owned,
-                        const std::uint64_t* ids, const std::int32_t* images, MappedColumns out) {
+                        const std::uint64_t* ids, const std::int32_t* images, ColumnPointers out) {
     std::size_t n = 0;
     // Writes a -> b with S = sign (c_a - c_b) given as s (the pair's a -> b shift).
     auto emit = [&](std::size_t a, std::size_t b, double sign, std::size_t k,
@@ -130,11 +117,20 @@ std::size_t map_columns(std::size_t count, const std::uint32_t* li, const std::u
     return n;
 }
 
-template <class F> std::size_t with_flag(bool flag, F f) {
-    return flag ? f(std::true_type{}) : f(std::false_type{});
-}
-
 } // namespace
+
+ColumnPointers resize_columns(DistributedPairs& out, std::size_t n, bool shifts, bool distances,
+                              bool vectors) {
+    out.owned.resize(n);
+    out.local_j.resize(n);
+    out.i.resize(n);
+    out.j.resize(n);
+    out.shifts.resize(shifts ? 3 * n : 0);
+    out.distances.resize(distances ? n : 0);
+    out.vectors.resize(vectors ? 3 * n : 0);
+    return {out.owned.data(),  out.local_j.data(),   out.i.data(),      out.j.data(),
+            out.shifts.data(), out.distances.data(), out.vectors.data()};
+}
 
 void map_pairs(const NeighborList& local, const Halo& halo, bool half, bool sorted,
                const Quantities& quantities, DistributedPairs& out) {
@@ -142,16 +138,8 @@ void map_pairs(const NeighborList& local, const Halo& halo, bool half, bool sort
     const bool keep_shifts = quantities.shifts || sorted;
     // Sized for the most pairs there can be (both orientations of every local pair), then cut.
     const std::size_t most = 2 * local.size();
-    out.owned.resize(most);
-    out.local_j.resize(most);
-    out.i.resize(most);
-    out.j.resize(most);
-    out.shifts.resize(keep_shifts ? 3 * most : 0);
-    out.distances.resize(quantities.distances ? most : 0);
-    out.vectors.resize(quantities.vectors ? 3 * most : 0);
-    const MappedColumns columns{out.owned.data(),  out.local_j.data(), out.i.data(),
-                                out.j.data(),      out.shifts.data(),  out.distances.data(),
-                                out.vectors.data()};
+    const ColumnPointers columns =
+        resize_columns(out, most, keep_shifts, quantities.distances, quantities.vectors);
     auto run = [&](auto half_rule, auto shifts, auto distances, auto vectors) {
         return map_columns<decltype(half_rule)::value, decltype(shifts)::value,
                            decltype(distances)::value, decltype(vectors)::value>(
@@ -167,13 +155,7 @@ void map_pairs(const NeighborList& local, const Halo& halo, bool half, bool sort
             });
         });
     });
-    out.owned.resize(n);
-    out.local_j.resize(n);
-    out.i.resize(n);
-    out.j.resize(n);
-    out.shifts.resize(keep_shifts ? 3 * n : 0);
-    out.distances.resize(quantities.distances ? n : 0);
-    out.vectors.resize(quantities.vectors ? 3 * n : 0);
+    resize_columns(out, n, keep_shifts, quantities.distances, quantities.vectors);
     if (sorted) {
         sort_pairs(out);
         if (!quantities.shifts) {

@@ -6,7 +6,6 @@
 #include <exception>
 #include <numeric>
 #include <string>
-#include <type_traits>
 
 #include "collective.hpp"
 #include "detail/candidate_radius.hpp"
@@ -18,25 +17,13 @@ namespace tricell::mpi {
 
 namespace {
 
-// Output columns of a refresh, written through raw pointers into arrays sized for every
-// candidate, trimmed to the pairs found at the end.
-struct RefreshColumns {
-    std::uint32_t* owned;
-    std::uint32_t* local_j;
-    std::uint64_t* i;
-    std::uint64_t* j;
-    std::int32_t* shifts;
-    double* distances;
-    double* vectors;
-};
-
 // The filter over the oriented candidates, grouped by owned i. Branch-free: every candidate is
 // written at the next free slot, which advances only for a pair within the cutoff.
 template <bool Shifts, bool Distances, bool Vectors>
 std::size_t filter_candidates(std::size_t owned, const std::size_t* offsets,
                               const std::uint32_t* cand_b, const double* y,
                               const std::uint64_t* ids, const std::int32_t* images,
-                              double cutoff_sq, RefreshColumns out) {
+                              double cutoff_sq, detail::ColumnPointers out) {
     std::size_t count = 0;
     for (std::size_t a = 0; a < owned; ++a) {
         const double xa = y[3 * a];
@@ -72,10 +59,6 @@ std::size_t filter_candidates(std::size_t owned, const std::size_t* offsets,
         }
     }
     return count;
-}
-
-template <class F> std::size_t with_flag(bool flag, F f) {
-    return flag ? f(std::true_type{}) : f(std::false_type{});
 }
 
 void add_exchange(const Halo& halo, Traffic& to) {
@@ -197,16 +180,8 @@ void DistributedVerletList::refresh() {
     const Quantities& q = options_.neighbors.quantities;
     const std::size_t capacity = candidate_b_.size();
     DistributedPairs& out = pairs_;
-    out.owned.resize(capacity);
-    out.local_j.resize(capacity);
-    out.i.resize(capacity);
-    out.j.resize(capacity);
-    out.shifts.resize(q.shifts ? 3 * capacity : 0);
-    out.distances.resize(q.distances ? capacity : 0);
-    out.vectors.resize(q.vectors ? 3 * capacity : 0);
-    const RefreshColumns columns{out.owned.data(),  out.local_j.data(), out.i.data(),
-                                 out.j.data(),      out.shifts.data(),  out.distances.data(),
-                                 out.vectors.data()};
+    const detail::ColumnPointers columns =
+        detail::resize_columns(out, capacity, q.shifts, q.distances, q.vectors);
     const double cutoff_sq = tricell::detail::strict_threshold_sq(options_.neighbors.cutoff);
     auto run = [&](auto shifts, auto distances, auto vectors) {
         return filter_candidates<decltype(shifts)::value, decltype(distances)::value,
@@ -216,18 +191,12 @@ void DistributedVerletList::refresh() {
             columns);
     };
     // One instantiation per set of columns (no branch per pair).
-    const std::size_t n = with_flag(q.shifts, [&](auto s) {
-        return with_flag(q.distances, [&](auto d) {
-            return with_flag(q.vectors, [&](auto v) { return run(s, d, v); });
+    const std::size_t n = detail::with_flag(q.shifts, [&](auto s) {
+        return detail::with_flag(q.distances, [&](auto d) {
+            return detail::with_flag(q.vectors, [&](auto v) { return run(s, d, v); });
         });
     });
-    out.owned.resize(n);
-    out.local_j.resize(n);
-    out.i.resize(n);
-    out.j.resize(n);
-    out.shifts.resize(q.shifts ? 3 * n : 0);
-    out.distances.resize(q.distances ? n : 0);
-    out.vectors.resize(q.vectors ? 3 * n : 0);
+    detail::resize_columns(out, n, q.shifts, q.distances, q.vectors);
 }
 
 void DistributedVerletList::forward(const Decomposition& decomposition, const Box& box,
