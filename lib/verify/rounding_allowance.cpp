@@ -2,7 +2,9 @@
 // check the caller's own, so a distance within rounding of the cutoff may fall on either side.
 // The allowance grows with the condition number of the box and the size of the coordinates, the
 // shift and the translations that wrapped the two atoms into the box (an atom at y = -1e-12 in a
-// box 5 high is stored at 5 - 1e-12, rounded to the last bit of 5).
+// box 5 high is stored at 5 - 1e-12, rounded to the last bit of 5). The search wraps in its own
+// frame, a reduced cell, where an atom just inside the caller's box may lie just outside and be
+// moved by a lattice vector: each wrapped position counts as one box length on top.
 #include <cmath>
 #include <limits>
 
@@ -31,7 +33,8 @@ double rounding_allowance(const Box& box, const Eigen::Vector3d& xi, const Eigen
     const double shifts =
         std::abs(double(shift[0])) + std::abs(double(shift[1])) + std::abs(double(shift[2]));
     const double size = xi.norm() + xj.norm() +
-                        h_norm * (shifts + wrap_images(box, xi) + wrap_images(box, xj)) + cutoff;
+                        h_norm * (shifts + 2 + wrap_images(box, xi) + wrap_images(box, xj)) +
+                        cutoff;
     return 512 * std::numeric_limits<double>::epsilon() * kappa * size;
 }
 
