@@ -70,8 +70,7 @@ constexpr double brute_force_budget = 1 << 26;
 /// The rounding allowance of the pair (x_i, x_j, S) at `cutoff`: distances computed in two
 /// correct ways (from wrapped positions, from the caller's) differ by less. It grows with the
 /// condition number of the box and with the size of the coordinates, of the shift and of the
-/// translations that wrap the two atoms into the box (in the caller's cell, plus one box length
-/// each for the search's own reduced cell).
+/// translations that wrap the two atoms into the box.
 TRICELL_API double rounding_allowance(const Box& box, const Eigen::Vector3d& xi,
                                       const Eigen::Vector3d& xj, const Eigen::Vector3i& shift,
                                       double cutoff);
