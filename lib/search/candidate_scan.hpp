@@ -51,6 +51,9 @@ struct AtomTable {
     PairArray<double> x, y, z;
     PairArray<std::int32_t> image;    ///< 3 per atom
     std::vector<std::uint32_t> index; ///< the caller's index of each atom
+    /// Every image is 0 (every atom was given inside the search frame's cell, the usual case):
+    /// then S = s for every pair a scan through s finds.
+    bool zero_images = false;
     std::size_t size() const { return index.size(); }
 };
 
@@ -96,7 +99,7 @@ class CandidateScanner {
                      bool reduced_frame, PairSink& sink, const std::uint8_t* query = nullptr,
                      bool subset_half = false)
         : x_(atoms.x.data()), y_(atoms.y.data()), z_(atoms.z.data()), image_(atoms.image.data()),
-          index_(atoms.index.data()), h_(h), cutoff_sq_(cutoff_sq), rule_(rule), half_(half),
+          zero_images_(atoms.zero_images), index_(atoms.index.data()), h_(h), cutoff_sq_(cutoff_sq), rule_(rule), half_(half),
           to_caller_(to_caller), reduced_frame_(reduced_frame), sink_(sink), query_(query),
           subset_half_(subset_half) {}
 
@@ -414,29 +417,43 @@ class CandidateScanner {
     // A half list with a uniform cutoff keeps every hit of a block, each in its canonical
     // orientation. Which orientation a pair takes is a coin toss (caller indices against the
     // backend's order), so i, j, S and D of either are written without a branch: a pair turned
-    // around has i and j swapped, -S and -D (exact, see above) and the same d.
+    // around has i and j swapped, -S and -D (exact, see above) and the same d. As in keep_all(),
+    // each column is filled by its own loop; the orientation is decided with i and j (only an
+    // atom's own image, i == j, needs S).
     // (Subset: a subset list's, which turns only pairs of two query atoms, see orients().)
     template <bool Subset>
     void keep_oriented(const Side& side, std::uint32_t start, const std::uint32_t* hits,
                        const double* d_sq, std::uint32_t found, const ImageShift& s) {
         const PairSink::Slots out = sink_.claim(found);
-        double sign[kernel_group * kernel_block];
+        std::int32_t sign[kernel_group * kernel_block]; // -1: turned around
         for (std::uint32_t h = 0; h < found; ++h) {
             const std::uint32_t g = hits[h] / kernel_block;
             const std::uint32_t b = start + hits[h] % kernel_block;
             const std::uint32_t i = side.i[g], j = index_[b];
-            const int sa = side.sa[g] - image_[3 * b];
-            const int sb = side.sb[g] - image_[3 * b + 1];
-            const int sc = side.sc[g] - image_[3 * b + 2];
-            const bool other = (!Subset || query_[b] != 0) && flip(i, j, sa, sb, sc);
+            bool other = i > j;
+            if (__builtin_expect(i == j, 0)) {
+                other = flip(i, j, side.sa[g] - image_[3 * b], side.sb[g] - image_[3 * b + 1],
+                             side.sc[g] - image_[3 * b + 2]);
+            }
+            other = other && (!Subset || query_[b] != 0);
             out.i[h] = other ? j : i;
             out.j[h] = other ? i : j;
-            sign[h] = other ? -1.0 : 1.0;
-            if (out.shifts != nullptr) {
-                const int flipped = other ? -1 : 1;
-                out.shifts[3 * h] = flipped * sa;
-                out.shifts[3 * h + 1] = flipped * sb;
-                out.shifts[3 * h + 2] = flipped * sc;
+            sign[h] = other ? -1 : 1;
+        }
+        if (out.shifts != nullptr && zero_images_) {
+            for (std::uint32_t h = 0; h < found; ++h) {
+                out.shifts[3 * h] = sign[h] * s.s[0];
+                out.shifts[3 * h + 1] = sign[h] * s.s[1];
+                out.shifts[3 * h + 2] = sign[h] * s.s[2];
+            }
+        } else if (out.shifts != nullptr) {
+            for (std::uint32_t h = 0; h < found; ++h) {
+                const std::uint32_t g = hits[h] / kernel_block;
+                const std::int32_t* image =
+                    image_ + 3 * std::size_t(start + hits[h] % kernel_block);
+                out.shifts[3 * h] = sign[h] * (side.sa[g] - image[0]);
+                out.shifts[3 * h + 1] = sign[h] * (side.sb[g] - image[1]);
+                out.shifts[3 * h + 2] = sign[h] * (side.sc[g] - image[2]);
             }
         }
         PairSink::put_distances(out, d_sq, found);
@@ -444,9 +461,10 @@ class CandidateScanner {
             for (std::uint32_t h = 0; h < found; ++h) {
                 const std::uint32_t g = hits[h] / kernel_block;
                 const std::uint32_t b = start + hits[h] % kernel_block;
-                out.vectors[3 * h] = sign[h] * ((x_[b] - side.x[g]) + s.v[0]) + 0.0;
-                out.vectors[3 * h + 1] = sign[h] * ((y_[b] - side.y[g]) + s.v[1]) + 0.0;
-                out.vectors[3 * h + 2] = sign[h] * ((z_[b] - side.z[g]) + s.v[2]) + 0.0;
+                const double turn = sign[h];
+                out.vectors[3 * h] = turn * ((x_[b] - side.x[g]) + s.v[0]) + 0.0;
+                out.vectors[3 * h + 1] = turn * ((y_[b] - side.y[g]) + s.v[1]) + 0.0;
+                out.vectors[3 * h + 2] = turn * ((z_[b] - side.z[g]) + s.v[2]) + 0.0;
             }
         }
         sink_.commit(found);
@@ -462,7 +480,13 @@ class CandidateScanner {
             out.i[h] = side.i[hits[h] / kernel_block];
             out.j[h] = index_[start + hits[h] % kernel_block];
         }
-        if (out.shifts != nullptr) {
+        if (out.shifts != nullptr && zero_images_) {
+            for (std::uint32_t h = 0; h < found; ++h) {
+                out.shifts[3 * h] = s.s[0];
+                out.shifts[3 * h + 1] = s.s[1];
+                out.shifts[3 * h + 2] = s.s[2];
+            }
+        } else if (out.shifts != nullptr) {
             for (std::uint32_t h = 0; h < found; ++h) {
                 const std::uint32_t g = hits[h] / kernel_block;
                 const std::int32_t* image =
@@ -552,6 +576,7 @@ class CandidateScanner {
     const double* y_;
     const double* z_;
     const std::int32_t* image_;
+    bool zero_images_;
     const std::uint32_t* index_;
     Eigen::Matrix3d h_;
     double cutoff_sq_;

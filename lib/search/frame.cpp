@@ -97,6 +97,8 @@ void fill_atom_table(const Eigen::Matrix3d& h, PointsView positions,
             }
         }
     });
+    atoms.zero_images = std::all_of(image.data(), image.data() + image.size(),
+                                    [](std::int32_t v) { return v == 0; });
 }
 
 void to_caller_frame(PairArray<std::int32_t>& shifts, const Eigen::Matrix3i& to_caller) {
