@@ -123,12 +123,10 @@ class MpiLjSimulation {
             const double inv_r6 = inv_r2 * inv_r2 * inv_r2;
             potential += 4 * inv_r6 * (inv_r6 - 1) - energy_shift;
             const Eigen::Vector3d f = (24 * inv_r6 * (2 * inv_r6 - 1) * inv_r2) * r;
-            double* fi = &forces_[3 * pairs.owned[k]];
-            double* fj = &forces_[3 * pairs.local_j[k]];
-            for (int c = 0; c < 3; ++c) {
-                fi[c] -= f[c];
-                fj[c] += f[c];
-            }
+            // Whole 3-vectors, as md_lj's loop (a loop over the components is not unrolled at
+            // -O2: a third more instructions per pair).
+            Eigen::Map<Eigen::Vector3d>(&forces_[3 * pairs.owned[k]]) -= f;
+            Eigen::Map<Eigen::Vector3d>(&forces_[3 * pairs.local_j[k]]) += f;
         }
         list_.reverse_sum(decomposition_, forces_, 3);
         for (std::size_t a = 0; a < atoms_.size(); ++a) {

@@ -56,7 +56,8 @@ void print_traffic(const tricell::mpi::Decomposition& d, const mpi_md::MpiLjSimu
                    double reach) {
     const tricell::mpi::ListTraffic& t = sim.list().traffic();
     const tricell::mpi::HaloStats& s = sim.list().halo().stats();
-    const tricell::mpi::HaloModel model = tricell::mpi::halo_model(d, sim.box(), reach);
+    const tricell::mpi::HaloModel model =
+        tricell::mpi::halo_model(d, sim.box(), reach, sim.list().halo().ghost_set());
     const double owned = mean(d, double(s.owned));
     const double ghosts = mean(d, double(s.ghosts));
     const double sent_ghosts = model.sent_ghosts_per_atom * owned;

@@ -103,11 +103,25 @@ std::vector<int> axis_neighbors(const Decomposition& d, int axis, bool periodic,
     return out;
 }
 
+// Whether a ghost sent from grid position `from` through translation t is upper at grid position
+// `to` (halo.hpp, "Upper halos"): from + t * dims - to lexicographically positive.
+bool upper(const std::array<int, 3>& t, const std::array<int, 3>& from,
+           const std::array<int, 3>& to, const std::array<int, 3>& dims) {
+    for (std::size_t k = 0; k < 3; ++k) {
+        const int offset = from[k] + t[k] * dims[k] - to[k];
+        if (offset != 0) {
+            return offset > 0;
+        }
+    }
+    return false;
+}
+
 } // namespace
 
 void Halo::build(const Decomposition& decomposition, const Box& box,
                  const std::vector<std::uint64_t>& ids, PointsView positions, double reach,
-                 const std::vector<double>* radii, const std::vector<std::int32_t>* species) {
+                 const std::vector<double>* radii, const std::vector<std::int32_t>* species,
+                 GhostSet ghosts) {
     const int me = decomposition.rank();
     std::vector<Fractional> wrapped(positions.size());
     std::vector<Shift> image(positions.size());
@@ -145,6 +159,7 @@ void Halo::build(const Decomposition& decomposition, const Box& box,
     });
 
     reach_ = reach;
+    ghost_set_ = ghosts;
     pbc_ = box.periodicity();
     owned_ = positions.size();
     const Eigen::Vector3d h = halo_widths(box, reach);
@@ -184,6 +199,8 @@ void Halo::build(const Decomposition& decomposition, const Box& box,
     sends_.assign(neighbors_.size(), {});
     self_sends_.clear();
     std::array<std::vector<AxisHit>, 3> hits;
+    const std::array<int, 3>& dims = decomposition.dims();
+    const bool upper_only = ghosts == GhostSet::upper;
     for (std::size_t a = 0; a < owned_; ++a) {
         const Cartesian y = box.to_cartesian(wrapped[a]);
         for (int k = 0; k < 3; ++k) {
@@ -195,7 +212,11 @@ void Halo::build(const Decomposition& decomposition, const Box& box,
         for (const AxisHit& ha : hits[0]) {
             for (const AxisHit& hb : hits[1]) {
                 for (const AxisHit& hc : hits[2]) {
-                    const int r = decomposition.rank_at({{ha.interval, hb.interval, hc.interval}});
+                    const std::array<int, 3> to{{ha.interval, hb.interval, hc.interval}};
+                    if (upper_only && !upper({{ha.t, hb.t, hc.t}}, my, to, dims)) {
+                        continue;
+                    }
+                    const int r = decomposition.rank_at(to);
                     const Send send{std::uint32_t(a), {ha.t, hb.t, hc.t}};
                     if (r == me) {
                         if (ha.t != 0 || hb.t != 0 || hc.t != 0) {

@@ -43,7 +43,8 @@ void DistributedSearch::build(const Decomposition& decomposition, const Box& box
     // No pair can count when every radius is 0; any positive reach is then right.
     reach = std::max(reach, std::numeric_limits<double>::min());
     halo_.build(decomposition, box, atoms.ids, atoms.points(), reach,
-                by_radii ? &options.radii : nullptr, by_species ? &options.species : nullptr);
+                by_radii ? &options.radii : nullptr, by_species ? &options.species : nullptr,
+                options.half ? GhostSet::upper : GhostSet::all);
     // The ghosts are the periodic images: the local search runs with every axis open, with the
     // local atoms' radii and species.
     const Box open = Box::from_columns(box.matrix(), Periodicity::none());

@@ -4,6 +4,8 @@
 #include <numeric>
 #include <tuple>
 
+#include "tricell/error.hpp"
+
 namespace tricell::mpi {
 
 namespace detail {
@@ -56,9 +58,10 @@ void sort_pairs(DistributedPairs& p) {
 
 namespace {
 
-// Every local pair a -> b with a owned (and b -> a with b owned); with Half only the canonical
-// orientation of the pair, kept when its i end is owned (exactly one of the two orientations is
-// canonical, so the rule is decided once per local pair).
+// Every local pair a -> b, a owned (the subset search orients a pair with one owned end from
+// it), and b -> a when b is owned too. With Half (an upper halo, where each owned-ghost pair is
+// found on one rank only), each pair once: an owned-ghost pair as found, an owned-owned pair in
+// its canonical orientation (exactly one of the two is).
 template <bool Half, bool Shifts, bool Distances, bool Vectors>
 std::size_t map_columns(std::size_t count, const std::uint32_t* li, const std::uint32_t* lj,
                         const double* distances, const double* vectors, std::size_t owned,
@@ -98,17 +101,13 @@ std::size_t map_columns(std::size_t count, const std::uint32_t* li, const std::u
             }
         }
         if constexpr (Half) {
-            if (canonical(ids[a], ids[b], s)) {
-                if (a < owned) {
-                    emit(a, b, 1.0, k, s);
-                }
-            } else if (b < owned) {
+            if (b >= owned || canonical(ids[a], ids[b], s)) {
+                emit(a, b, 1.0, k, s);
+            } else {
                 emit(b, a, -1.0, k, r);
             }
         } else {
-            if (a < owned) {
-                emit(a, b, 1.0, k, s);
-            }
+            emit(a, b, 1.0, k, s);
             if (b < owned) {
                 emit(b, a, -1.0, k, r);
             }
@@ -134,6 +133,10 @@ ColumnPointers resize_columns(DistributedPairs& out, std::size_t n, bool shifts,
 
 void map_pairs(const NeighborList& local, const Halo& halo, bool half, bool sorted,
                const Quantities& quantities, DistributedPairs& out) {
+    if (half != (halo.ghost_set() == GhostSet::upper)) {
+        tricell::detail::fail<Error>("internal: a ", half ? "half" : "full", " list needs ",
+                                     half ? "an upper" : "a full", " halo");
+    }
     // Shifts are always computed (the half rule needs them) and kept when asked or sorting.
     const bool keep_shifts = quantities.shifts || sorted;
     // Sized for the most pairs there can be (both orientations of every local pair), then cut.

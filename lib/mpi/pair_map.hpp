@@ -1,6 +1,6 @@
 // From a rank's local half list (owned + ghost atoms, local frame) to its global pairs, by the
-// full-list and half-list ownership rules of tricell/mpi/neighbors.hpp. The one place those
-// rules are written.
+// full-list and half-list rules of tricell/mpi/neighbors.hpp (which pairs a rank reports, and
+// in which orientation). The one place those rules are written.
 #pragma once
 
 #include <cstddef>
@@ -20,7 +20,7 @@ NeighborOptions local_options(const NeighborOptions& caller, std::size_t owned);
 
 /// Replaces out with the global pairs of `local` (a half list of the owned atoms' subset over
 /// halo's local atoms, with the distances and vectors quantities asks): full, or half by the
-/// ownership rule; sorted by (i, j, S) if asked.
+/// half-list rule (halo must then be an upper halo); sorted by (i, j, S) if asked.
 void map_pairs(const NeighborList& local, const Halo& halo, bool half, bool sorted,
                const Quantities& quantities, DistributedPairs& out);
 

@@ -8,7 +8,8 @@
 
 namespace tricell::mpi {
 
-HaloModel halo_model(const Decomposition& decomposition, const Box& box, double reach) {
+HaloModel halo_model(const Decomposition& decomposition, const Box& box, double reach,
+                     GhostSet ghosts) {
     if (!(std::isfinite(reach) && reach > 0)) {
         detail::fail<InvalidArgument>("halo_model: reach must be > 0 (got ", reach, ")");
     }
@@ -28,8 +29,9 @@ HaloModel halo_model(const Decomposition& decomposition, const Box& box, double 
         neighborhood *= std::min(d, 2 * int(std::ceil(h)) + 1);
     }
     HaloModel out;
-    out.ghosts_per_atom = all - 1;
-    out.sent_ghosts_per_atom = all - self;
+    const double share = ghosts == GhostSet::upper ? 0.5 : 1.0;
+    out.ghosts_per_atom = share * (all - 1);
+    out.sent_ghosts_per_atom = share * (all - self);
     out.messages = neighborhood - 1;
     return out;
 }

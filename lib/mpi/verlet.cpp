@@ -121,7 +121,8 @@ bool DistributedVerletList::update(const Decomposition& decomposition, const Box
                 }
                 ++alltoall_migrations_;
             }
-            halo_.build(decomposition, box, atoms.ids, atoms.points(), list_radius());
+            halo_.build(decomposition, box, atoms.ids, atoms.points(), list_radius(), nullptr,
+                        nullptr, options_.neighbors.half ? GhostSet::upper : GhostSet::all);
             add_exchange(halo_, traffic_.halo_build);
             halo_built_ = true;
             build(decomposition, open);

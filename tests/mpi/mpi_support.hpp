@@ -90,22 +90,37 @@ inline std::vector<Eigen::Vector3d> gather_positions(const mpi::LocalAtoms& atom
     return x;
 }
 
+/// The serial half list's orientation: i < j, or i == j with S lexicographically positive.
+inline bool canonical(std::uint64_t i, std::uint64_t j, const std::int32_t* s) {
+    if (i != j) {
+        return i < j;
+    }
+    return s[0] > 0 || (s[0] == 0 && (s[1] > 0 || (s[1] == 0 && s[2] > 0)));
+}
+
 /// Compares the union of the ranks' pairs (i, j, S, d, D required) with the serial list of the
 /// gathered atoms: the same set of (i, j, S), no (i, j, S) twice, and the same d and D to 1e-9
-/// relative. Returns "" on every rank when they agree, else rank 0's description.
+/// relative. A half list's pairs are compared in the serial orientation (a pair with a ghost end
+/// is oriented from its owned end), and one whose ends are both owned must have it already.
+/// Returns "" on every rank when they agree, else rank 0's description.
 inline std::string compare_with_serial(const mpi::DistributedPairs& pairs,
                                        const mpi::LocalAtoms& atoms, const Box& box,
                                        const NeighborOptions& options, MPI_Comm comm) {
     std::vector<double> mine;
     mine.reserve(9 * pairs.size());
     for (std::size_t k = 0; k < pairs.size(); ++k) {
-        mine.insert(mine.end(),
-                    {double(pairs.i[k]), double(pairs.j[k]), double(pairs.shifts[3 * k]),
-                     double(pairs.shifts[3 * k + 1]), double(pairs.shifts[3 * k + 2]),
-                     pairs.distances[k], pairs.vectors[3 * k], pairs.vectors[3 * k + 1],
-                     pairs.vectors[3 * k + 2]});
-        if (atoms.ids[pairs.owned[k]] != pairs.i[k]) {
-            mine.back() = std::nan(""); // owned index does not name i: reported below
+        const std::int32_t* s = &pairs.shifts[3 * k];
+        const bool flip = options.half && !canonical(pairs.i[k], pairs.j[k], s);
+        const double sign = flip ? -1.0 : 1.0;
+        const std::uint64_t i = flip ? pairs.j[k] : pairs.i[k];
+        const std::uint64_t j = flip ? pairs.i[k] : pairs.j[k];
+        mine.insert(mine.end(), {double(i), double(j), sign * s[0], sign * s[1], sign * s[2],
+                                 pairs.distances[k], sign * pairs.vectors[3 * k],
+                                 sign * pairs.vectors[3 * k + 1], sign * pairs.vectors[3 * k + 2]});
+        if (atoms.ids[pairs.owned[k]] != pairs.i[k] || (flip && pairs.local_j[k] < atoms.size())) {
+            // The owned index does not name i, or an owned-owned pair is not in the serial
+            // orientation: reported below as a wrong D.
+            mine.back() = std::nan("");
         }
     }
     const std::vector<double> all = gather_to_root(mine, comm);

@@ -223,7 +223,10 @@ TEST(MpiVerlet, UniformSystem_CountedTrafficMatchesTheModel) {
     }
     EXPECT_EQ(list.rebuild_count(), std::size_t(1));
     const tricell::mpi::ListTraffic& t = list.traffic();
-    const tricell::mpi::HaloModel model = tricell::mpi::halo_model(d, box, list.list_radius());
+    // A half list's halo holds the upper ghosts only.
+    EXPECT_EQ(list.halo().ghost_set(), tricell::mpi::GhostSet::upper);
+    const tricell::mpi::HaloModel model =
+        tricell::mpi::halo_model(d, box, list.list_radius(), tricell::mpi::GhostSet::upper);
     // Messages: one per neighbour rank per exchange, as the model counts them (exact).
     EXPECT_EQ(int(list.halo().neighbor_ranks().size()), model.messages);
     EXPECT_EQ(t.halo_build.exchanges, 1u);

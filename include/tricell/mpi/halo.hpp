@@ -18,6 +18,20 @@
 // D = y_b - y_a = x_j - x_i + H (c_a - c_b): the global pair (id(a), id(b), S = c_a - c_b), S
 // relative to the caller's positions.
 //
+// Upper halos (Newton's third law). A ghost comes from an owner rank B through a translation T;
+// place it in the domain grid continued periodically, at G = g(B) + T * dims (g a rank's grid
+// coordinates, * per axis), and call it upper on rank A when G - g(A) is lexicographically
+// positive (first axis first). An owned-ghost pair (a on A, the image of b on B through T) is,
+// on B, the pair (b, the image of a through -T), whose offset is the negation; the offset is zero
+// only for T = 0 and A = B, an owned-owned pair. Both ends lie in their domains at a build and
+// within the reach of each other, so each end's image is in the other's halo: with upper halos
+// (GhostSet::upper) every owned-ghost pair within the reach is found on exactly one rank, the
+// one where its ghost is upper, and no rule on coordinates (which rounding would make differ
+// between the two ranks) is needed. It is LAMMPS's half stencil of "newton on" at the level of
+// domains; on a grid of equal domains every rank holds half the ghosts of the full halo (the
+// upper half of its neighbourhood), and one rank alone keeps its images through T > 0. The
+// neighbour ranks, and so the messages, are those of the full halo (some messages are empty).
+//
 // Per-atom attributes. A build may carry a radius and a species per owned atom (for the
 // variable cutoffs of NeighborOptions); every ghost has its owner's, in radii() and species().
 //
@@ -59,6 +73,11 @@ struct HaloStats {
     int messages_sent = 0; ///< messages this rank sent in the exchange (one per neighbour rank)
 };
 
+/// Which ghosts a halo gathers: every image within the reach of the domain (full lists, and any
+/// use of ghosts besides pairs), or the upper ones only (half lists with Newton's third law; see
+/// "Upper halos" above).
+enum class GhostSet { all, upper };
+
 class TRICELL_MPI_API Halo {
   public:
     /// Bytes per ghost on the wire: a build sends id, position, image, species and radius; an
@@ -70,10 +89,11 @@ class TRICELL_MPI_API Halo {
     /// domain. radii / species, when not null (on every rank alike), hold one value per owned
     /// atom and travel with the ghosts. positions are the owned atoms' caller positions; every atom
     /// must lie in this rank's domain (after migrate()), else InvalidArgument on every rank.
+    /// `ghosts` (the same on every rank): all of them, or the upper ones only.
     void build(const Decomposition& decomposition, const Box& box,
                const std::vector<std::uint64_t>& ids, PointsView positions, double reach,
                const std::vector<double>* radii = nullptr,
-               const std::vector<std::int32_t>* species = nullptr);
+               const std::vector<std::int32_t>* species = nullptr, GhostSet ghosts = GhostSet::all);
     /// Collective. New caller positions of the same owned atoms (same order), possibly in a new
     /// box of the same periodicity: re-sends the ghosts of the build with fresh positions. Each
     /// atom's image c follows its caller position across wrapping (the rounded fractional jump
@@ -98,6 +118,7 @@ class TRICELL_MPI_API Halo {
     std::size_t ghost_count() const { return ids_.size() - owned_; }
     std::size_t size() const { return ids_.size(); }
     double reach() const { return reach_; }
+    GhostSet ghost_set() const { return ghost_set_; }
     /// y per local atom (owned first, then ghosts), 3 doubles each.
     const std::vector<double>& positions() const { return y_; }
     PointsView points() const { return PointsView(y_.data(), ids_.size()); }
@@ -130,6 +151,7 @@ class TRICELL_MPI_API Halo {
                       std::size_t width, const char* what) const;
 
     double reach_ = 0;
+    GhostSet ghost_set_ = GhostSet::all;
     std::size_t owned_ = 0;
     Periodicity pbc_;
     std::vector<double> y_;

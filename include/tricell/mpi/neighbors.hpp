@@ -9,16 +9,20 @@
 // maps to the global pair (id(a), id(b), S = c_a - c_b), see halo.hpp, and is kept by the rule
 // below. Over all ranks (docs/contract.md, MPI):
 //
-// - full list: every (i, j, S) of the serial full list with i owned by this rank, once;
-// - half list (ownership rule): the pair is reported in the serial list's canonical orientation
-//   (i < j, or i == j with S lexicographically positive) by the rank that owns that i, once.
-//   Every rank sees all pairs of the atoms it owns, so each pair is reported exactly once over
-//   all ranks and the union equals the serial half list. This is Newton's third law across
-//   ranks ("newton on" in LAMMPS, which decides owned-ghost pairs by coordinates; here the
-//   global ids decide): a pair whose j is a ghost is listed by one of the two owners only, so a
-//   force loop adds the pair's force to i and its opposite to the ghost row local_j, and
-//   Halo::reverse_sum() (or DistributedVerletList::reverse_sum()) then adds every ghost's force
-//   into its owner. A full list needs no reverse communication but computes each force twice.
+// - full list: every (i, j, S) of the serial full list with i owned by this rank, once; the halo
+//   holds every ghost (GhostSet::all).
+// - half list (Newton's third law across ranks): the halo holds the upper ghosts only
+//   (GhostSet::upper, halo.hpp "Upper halos"), so each owned-ghost pair is within reach of one
+//   rank only, the one where its ghost is upper, and is reported there once, oriented from its
+//   owned end (i owned, j the ghost); an owned-owned pair is reported by its rank once, in the
+//   serial list's canonical orientation (i < j, or i == j with S lexicographically positive).
+//   Each pair is reported exactly once over all ranks and, up to orientation, the union is the
+//   serial half list. Like LAMMPS's "newton on" (a half stencil; LAMMPS decides owned-ghost
+//   pairs by coordinates, tricell by the domain grid, which needs no tie-break under rounding),
+//   each owned-ghost pair is searched once, on one rank: a force loop adds the pair's force to
+//   i and its opposite to the ghost row local_j, and Halo::reverse_sum() (or
+//   DistributedVerletList::reverse_sum()) then adds every ghost's force into its owner. A full
+//   list needs no reverse communication but computes each force twice.
 //
 // Indices are global ids; S is relative to the positions the owners hold; D = x_j - x_i + H S
 // and d are computed from the local frame (the same doubles as a serial search up to rounding).

@@ -11,8 +11,13 @@
 // n (g - g_self). Its neighbour ranks are M = prod_k min(d_k, 2 ceil(r d_k / w_k) + 1) - 1 (26
 // in a large grid with r below a domain's width), one message each way per exchange. Bytes per
 // sent ghost: Halo::build_record_bytes at a build, Halo::update_record_bytes per update, 8 w for
-// w doubles per atom in forward() and reverse_sum(). Ghosts are expected values (exact up to
-// the fluctuation of the atoms in the halo); messages are exact.
+// w doubles per atom in forward() and reverse_sum(). An upper halo (GhostSet::upper, the half
+// lists of Newton's third law) holds half of g, and sends half of g - g_self: along each axis the
+// overlap of a domain's halo with a translate of another domain has the length of the overlap of
+// that domain's halo with the opposite translate of the first, so the two orientations of an
+// owned-ghost relation are equally likely, and the upper halo keeps one of each; the neighbour
+// ranks and messages are the same. Ghosts are expected values (exact up to the fluctuation of
+// the atoms in the halo); messages are exact.
 #pragma once
 
 #include <cstdint>
@@ -20,6 +25,7 @@
 #include "tricell/box.hpp"
 #include "tricell/mpi/decomposition.hpp"
 #include "tricell/mpi/export.hpp"
+#include "tricell/mpi/halo.hpp"
 
 namespace tricell::mpi {
 
@@ -57,8 +63,9 @@ struct HaloModel {
 };
 
 /// Collective-free. The model for `decomposition`'s grid (its boundaries are not read: equal
-/// domains assumed) in `box` (every axis periodic, else InvalidArgument) at halo reach `reach`.
+/// domains assumed) in `box` (every axis periodic, else InvalidArgument) at halo reach `reach`,
+/// for a halo of all ghosts or of the upper ones.
 TRICELL_MPI_API HaloModel halo_model(const Decomposition& decomposition, const Box& box,
-                                     double reach);
+                                     double reach, GhostSet ghosts = GhostSet::all);
 
 } // namespace tricell::mpi

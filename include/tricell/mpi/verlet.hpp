@@ -1,19 +1,21 @@
 // A Verlet list over ranks: ghosts and candidates at r_c + skin, rebuilt when ALL ranks agree.
 //
 // A build migrates the atoms to their owners, exchanges ghosts within the list radius
-// r_l = r_c + skin of each domain and searches the candidates of the owned atoms among the owned
-// and ghost atoms in the local frame (halo.hpp; "Candidates" below). Between builds atoms stay
-// with the rank that owned them at the build, even when they drift out of its domain. Each
-// update() first refreshes the ghosts from their owners (Halo::update: same ghosts, new
-// positions), then every rank applies the serial list's rebuild rule (tricell/displacement.hpp:
-// skin / 2 in a fixed box, less when the box deforms) to its owned atoms, and one MPI_Allreduce
-// (joined with the input check) decides for everybody: if any atom anywhere moved past the
-// budget, every rank rebuilds (migration, halo, candidates); otherwise every rank only filters
-// its candidates. A rebuild's migration goes to the halo's neighbour ranks only when every
-// atom's new owner is one of them (the usual case), else through the MPI_Alltoall of migrate().
+// r_l = r_c + skin of each domain (for a half list the upper ones, halo.hpp) and searches the
+// candidates of the owned atoms among the owned and ghost atoms in the local frame (halo.hpp;
+// "Candidates" below). Between builds atoms stay with the rank that owned them at the build, even
+// when they drift out of its domain. Each update() first refreshes the ghosts from their owners
+// (Halo::update: same ghosts, new positions), then every rank applies the serial list's rebuild
+// rule (tricell/displacement.hpp: skin / 2 in a fixed box, less when the box deforms) to its owned
+// atoms, and one MPI_Allreduce (joined with the input check) decides for everybody: if any atom
+// anywhere moved past the budget, every rank rebuilds (migration, halo, candidates); otherwise
+// every rank only filters its candidates. A rebuild's migration goes to the halo's neighbour ranks
+// only when every atom's new owner is one of them (the usual case), else through the MPI_Alltoall
+// of migrate().
 //
 // Why the ghosts need no reselection between builds: at the build every owned atom i was inside
-// its domain and every image of j within r_l of it was a ghost. While no atom has moved more
+// its domain and every image of j within r_l of it was a ghost (for a half list, every image
+// upper on i's rank, the rank the pair belongs to). While no atom has moved more
 // than the budget, a pair now within r_c was within r_l at the build (the serial list's
 // argument), so its j image is still among the ghosts, at its owner's current position.
 //
@@ -24,11 +26,11 @@
 // Candidates. A build searches the owned atoms' subset (NeighborOptions::query, no ghost-ghost
 // pair) over the local atoms, in the box's frame with every axis open, at the list radius
 // (widened by the serial list's rounding margins), and applies the list's rule to each local
-// pair ONCE (full: both orientations whose i is owned; half: the ownership rule of
-// neighbors.hpp, Newton's third law across ranks). A pair's orientation never changes between
-// builds (global ids decide it, and the image shift of an atom with its own image is the fixed
-// translation of the ghost), so the candidates are kept already oriented, grouped by their owned
-// i. Each update() then only filters them at r_c from the local positions, D = y_j - y_i, and
+// pair ONCE (full: both orientations whose i is owned; half: the orientation of neighbors.hpp,
+// Newton's third law across ranks). A pair's orientation never changes between builds (its
+// owned end, or global ids, decide it, and the image shift of an atom with its own image is the
+// fixed translation of the ghost), so the candidates are kept already oriented, grouped by their
+// owned i. Each update() then only filters them at r_c from the local positions, D = y_j - y_i, and
 // writes the global ids: per step a rank does what the serial VerletList's refresh does, plus
 // the halo update before it and the caller's reverse_sum() after the force loop.
 #pragma once
@@ -53,7 +55,7 @@ namespace tricell::mpi {
 class TRICELL_MPI_API DistributedVerletList {
   public:
     DistributedVerletList() = default;
-    /// options as for tricell::VerletList; half follows the ownership rule of neighbors.hpp.
+    /// options as for tricell::VerletList; half follows the rule of neighbors.hpp (upper halo).
     explicit DistributedVerletList(const VerletOptions& options);
 
     /// r_l = cutoff + skin: the halo's reach and the candidates' radius.
