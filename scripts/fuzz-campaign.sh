@@ -7,7 +7,8 @@
 # (scripts/fuzz-minimise.sh folds the finds into the corpus). At the end one line per harness:
 # executions, exec/s (wall clock), exec per CPU second (user + system time of the process, the
 # rate that counts on a shared machine), cov, ft, corpus size and the crash, timeout and OOM
-# artifacts found. TRICELL_FUZZ_EXTRA adds libFuzzer flags (e.g. -seed=7).
+# artifacts found. Each harness runs with the flags of tests/fuzz/<name>.flags, if any;
+# TRICELL_FUZZ_EXTRA adds libFuzzer flags (e.g. -seed=7).
 #
 #   scripts/fuzz-campaign.sh [SECONDS_PER_HARNESS [HARNESS...]]
 #   e.g. scripts/fuzz-campaign.sh 600 poscar xyz        (default: 3600 s; all harnesses)
@@ -37,11 +38,15 @@ for name in "${harnesses[@]}"; do
     if [ -f "tests/fuzz/$name.dict" ]; then
         dict=("-dict=$PWD/tests/fuzz/$name.dict")
     fi
-    echo "== $name: up to $runs runs or $seconds s"
+    flags=()
+    if [ -f "tests/fuzz/$name.flags" ]; then # the harness's flags for mutating runs
+        mapfile -t flags < <(grep '^-' "tests/fuzz/$name.flags")
+    fi
+    echo "== $name: up to $runs runs or $seconds s ${flags[*]}"
     status=0
     /usr/bin/time -f '%U %S' -o "$dir/cpu" \
         "build-fuzz/tests/fuzz/${name}_fuzzer" -rss_limit_mb=2048 -timeout=10 -close_fd_mask=3 \
-        -runs="$runs" -max_total_time="$seconds" -print_final_stats=1 "${extra[@]}" \
+        -runs="$runs" -max_total_time="$seconds" -print_final_stats=1 "${flags[@]}" "${extra[@]}" \
         "${dict[@]}" -artifact_prefix="$dir/artifacts/" "$dir/corpus" "${seeds[@]}" \
         >"$dir/log" 2>&1 || status=$?
     executed=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$dir/log" | tail -1 | grep -o '[0-9]*$' || echo "?")
