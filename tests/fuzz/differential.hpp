@@ -181,12 +181,12 @@ template <class CutoffOf>
 PairRows oracle_rows(const Box& box, const std::vector<Eigen::Vector3d>& x, double largest,
                      const CutoffOf& cutoff_of, bool half) {
     PairRows rows;
-    testing::for_each_brute_force_pair(
-        box, x, largest, cutoff_of, [&](const PairKey& key, const testing::PairValue& value) {
-            if (!half || testing::in_canonical_half(key)) {
-                rows.emplace_back(key, value);
-            }
-        });
+    testing::for_each_brute_force_pair(box, x, largest, cutoff_of,
+                                       [&](const PairKey& key, const testing::PairValue& value) {
+                                           if (!half || testing::in_canonical_half(key)) {
+                                               rows.emplace_back(key, value);
+                                           }
+                                       });
     return rows;
 }
 

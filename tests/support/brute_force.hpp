@@ -31,8 +31,8 @@ using PairMap = std::map<PairKey, PairValue>;
 /// (i, then j, then S lexicographically): the oracle's one loop, which the map below and the
 /// fuzzers' sorted rows are both filled from.
 template <class Visit>
-void for_each_brute_force_pair(const Box& box, const std::vector<Eigen::Vector3d>& x,
-                               double cutoff, const Visit& visit) {
+void for_each_brute_force_pair(const Box& box, const std::vector<Eigen::Vector3d>& x, double cutoff,
+                               const Visit& visit) {
     const Eigen::Matrix3d& h = box.matrix();
     const Eigen::Vector3d& w = box.perpendicular_widths();
     std::vector<Eigen::Vector3d> s(x.size());
