@@ -125,7 +125,7 @@ typedef struct tricell_neighbor_options {
     int backend;      /* a tricell_backend (default TRICELL_BACKEND_AUTOMATIC); same list */
     size_t max_pairs; /* refuse a list larger than this (default 5e8; 0 = no limit) */
     size_t max_bytes; /* refuse a list whose memory at its peak (docs/memory.md) passes this
-                       * many bytes (default 3/4 of the physical memory; 0 = no limit) */
+                       * many bytes (default 3/4 of the memory the process may use; 0 = no limit) */
     /* Variable cutoffs (NULL: unused). radii: N per-atom radii, a pair counts when
      * d < radii[i] + radii[j]. species: N per-atom species, with species_cutoffs (a table of
      * species_cutoff_count entries): a pair counts when d < the table's cutoff for its two

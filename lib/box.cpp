@@ -17,8 +17,6 @@ constexpr const char* axis_name[3] = {"a", "b", "c"};
 constexpr double pi = 3.14159265358979323846;
 // A box whose |det H| is below this fraction of |a||b||c| is treated as flat.
 constexpr double flatness_tolerance = 1e-10;
-// Fractional coordinates beyond this many box lengths cannot be wrapped into an int shift.
-constexpr double max_fractional = 1e9;
 
 double degrees(double radians) {
     return radians * 180.0 / pi;
@@ -192,34 +190,14 @@ void Box::to_cartesian(PointsView fractional, MutablePointsView cartesian) const
     }
 }
 
-WrappedFractional Box::wrap(const Fractional& s) const {
-    WrappedFractional out;
-    out.wrapped = s;
-    for (int axis = 0; axis < 3; ++axis) {
-        if (!std::isfinite(s[axis])) {
-            detail::fail<InvalidArgument>("fractional coordinate ", axis_name[axis],
-                                          " is not finite (got ", s[axis], ")");
-        }
-        if (!pbc_[axis]) {
-            continue;
-        }
-        if (std::abs(s[axis]) > max_fractional) {
-            detail::fail<InvalidArgument>("fractional coordinate ", axis_name[axis], " = ", s[axis],
-                                          " is more than ", max_fractional,
-                                          " box lengths away and cannot be wrapped");
-        }
-        double image = std::floor(s[axis]);
-        double w = s[axis] - image;
-        // s - floor(s) rounds to 1.0 for tiny negative s (e.g. -1e-17): that point belongs to
-        // the next image at 0.0, never at 1.0.
-        if (w >= 1.0) {
-            w = 0.0;
-            image += 1.0;
-        }
-        out.wrapped[axis] = w + 0.0; // + 0.0 turns -0.0 into +0.0
-        out.image[axis] = static_cast<int>(image);
+void Box::wrap_failure(const Fractional& s, int axis) {
+    if (!std::isfinite(s[axis])) {
+        detail::fail<InvalidArgument>("fractional coordinate ", axis_name[axis],
+                                      " is not finite (got ", s[axis], ")");
     }
-    return out;
+    detail::fail<InvalidArgument>("fractional coordinate ", axis_name[axis], " = ", s[axis],
+                                  " is more than ", max_fractional,
+                                  " box lengths away and cannot be wrapped");
 }
 
 Cartesian Box::wrap(const Cartesian& r, Shift* image) const {

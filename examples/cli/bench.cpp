@@ -85,7 +85,7 @@ Options:
                       500000000; 0 = no limit)
   --max-bytes N       refuse lists whose memory would pass N bytes (a suffix K, M, G or T
                       counts powers of 1024: 16G) before allocating them (default three
-                      quarters of the physical memory; 0 = no limit)
+                      quarters of the memory tricell may use; 0 = no limit)
   --input-format F    cif, xyz or poscar, instead of the guess from the file name
   -h, --help          this help
 )";

@@ -44,7 +44,7 @@ Options:
                       500000000; 0 = no limit)
   --max-bytes N       refuse a search whose list would pass N bytes of memory (a suffix K, M,
                       G or T counts powers of 1024: 16G) before allocating it (default three
-                      quarters of the physical memory; 0 = no limit)
+                      quarters of the memory tricell may use; 0 = no limit)
   --input-format F    cif, xyz or poscar, instead of the guess from the file name
   -h, --help          this help
 )";

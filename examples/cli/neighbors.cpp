@@ -46,7 +46,7 @@ Options:
                       the number of atoms above N
   --max-bytes N       refuse lists whose memory would pass N bytes (a suffix K, M, G or T
                       counts powers of 1024: 16G) before allocating them (default three
-                      quarters of the physical memory; 0 = no limit)
+                      quarters of the memory tricell may use; 0 = no limit)
   --threads T         threads of the search and of the formatting of the table, 0 = all
                       hardware threads (default 1); the output is the same for any T
   --verify            after writing the list, check it against an independent search (brute

@@ -13,7 +13,9 @@
 // that could still be shorter (a bound from the Gram matrix), so skewed cells are exact.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
+#include <limits>
 
 #include <Eigen/Core>
 
@@ -82,9 +84,13 @@ class TRICELL_API Box {
     void to_fractional(PointsView cartesian, MutablePointsView fractional) const;
     void to_cartesian(PointsView fractional, MutablePointsView cartesian) const;
 
+    /// Fractional coordinates beyond this many box lengths cannot be wrapped into an int shift.
+    static constexpr double max_fractional = 1e9;
+
     /// Wraps periodic components into [0, 1) and reports the removed integer shift. Open axes
     /// are returned unchanged with shift 0. Throws InvalidArgument for a non-finite coordinate
-    /// or one more than 1e9 box lengths away (its shift would not fit an int).
+    /// or one more than max_fractional box lengths away (its shift would not fit an int).
+    /// (Inline: the search wraps every atom of every call.)
     WrappedFractional wrap(const Fractional& s) const;
     /// Cartesian convenience: the wrapped Cartesian point and the shift with
     /// r = wrapped + H * image.
@@ -98,6 +104,8 @@ class TRICELL_API Box {
 
   private:
     Box(const Eigen::Matrix3d& h, Periodicity pbc);
+    /// The InvalidArgument of wrap() for component `axis` of s.
+    [[noreturn]] static void wrap_failure(const Fractional& s, int axis);
 
     Eigen::Matrix3d h_;
     Eigen::Matrix3d h_inv_;
@@ -111,5 +119,33 @@ class TRICELL_API Box {
     Eigen::Matrix3i reduced_to_h_ = Eigen::Matrix3i::Zero();
     Eigen::Matrix3d reduced_gram_inv_ = Eigen::Matrix3d::Zero();
 };
+
+inline WrappedFractional Box::wrap(const Fractional& s) const {
+    WrappedFractional out;
+    out.wrapped = s;
+    for (int axis = 0; axis < 3; ++axis) {
+        // Finite, and within max_fractional on a periodic axis (a NaN fails the comparison).
+        const double limit = pbc_[axis] ? max_fractional : std::numeric_limits<double>::max();
+        if (!(std::abs(s[axis]) <= limit)) {
+            wrap_failure(s, axis);
+        }
+        if (!pbc_[axis]) {
+            continue;
+        }
+        // floor(s) without a library call: |s| <= 1e9 converts to an integer exactly.
+        double image = double(std::int64_t(s[axis]));
+        image -= image > s[axis] ? 1.0 : 0.0;
+        double w = s[axis] - image;
+        // s - floor(s) rounds to 1.0 for tiny negative s (e.g. -1e-17): that point belongs to
+        // the next image at 0.0, never at 1.0.
+        if (w >= 1.0) {
+            w = 0.0;
+            image += 1.0;
+        }
+        out.wrapped[axis] = w + 0.0; // + 0.0 turns -0.0 into +0.0
+        out.image[axis] = static_cast<int>(image);
+    }
+    return out;
+}
 
 } // namespace tricell

@@ -71,8 +71,9 @@ struct SpeciesCutoff {
     double cutoff = 0; ///< pairs of these species count when d < cutoff; finite and > 0
 };
 
-/// Three quarters of the machine's physical memory in bytes (sysconf), the default of
-/// NeighborOptions::max_bytes; 0 (no limit) where the system does not say.
+/// Three quarters of the memory this process may use, in bytes: the physical memory or, when
+/// smaller, its control group's memory limit (a container's or a batch job's). The default of
+/// NeighborOptions::max_bytes; 0 (no limit) where the system says neither.
 TRICELL_API std::size_t default_max_bytes();
 
 struct TRICELL_API NeighborOptions {
@@ -116,7 +117,8 @@ struct TRICELL_API NeighborOptions {
     /// grouping or sorting (docs/memory.md), checked against the estimated pairs before anything
     /// proportional to them is allocated, and again while the list is written (a list that
     /// outgrows its estimate is refused before a growing column would pass the limit). 0 means
-    /// no limit. The default, default_max_bytes(), is three quarters of the physical memory.
+    /// no limit. The default, default_max_bytes(), is three quarters of the memory this
+    /// process may use.
     std::size_t max_bytes = default_max_bytes();
     /// Cap on the dense and linked grids' cells; 0 means 4 N + 64. Memory follows atoms, not
     /// volume. (The hash and octree backends need no cap: their memory is O(N) anyway.)

@@ -4,29 +4,9 @@
 #include <cmath>
 #include <limits>
 
-#if __has_include(<unistd.h>)
-#include <unistd.h>
-#endif
-
 #include "tricell/error.hpp"
 
 namespace tricell {
-
-std::size_t default_max_bytes() {
-    // Three quarters of the physical memory, read once: the rest is the caller's arrays, the
-    // search's O(N) part and everything else running.
-    static const std::size_t bytes = [] {
-#if defined(_SC_PHYS_PAGES) && defined(_SC_PAGE_SIZE)
-        const long pages = sysconf(_SC_PHYS_PAGES);
-        const long page = sysconf(_SC_PAGE_SIZE);
-        if (pages > 0 && page > 0) {
-            return std::size_t(double(pages) * double(page) * 0.75);
-        }
-#endif
-        return std::size_t(0); // unknown: no limit
-    }();
-    return bytes;
-}
 
 namespace detail {
 

@@ -90,7 +90,7 @@ std::size_t max_bytes_argument(const py::object& value) {
         }
     }
     throw py::value_error("max_bytes must be a whole number of bytes >= 0 (0: no limit) or None "
-                          "(three quarters of the physical memory), got " +
+                          "(three quarters of the memory this process may use), got " +
                           described(value));
 }
 
@@ -346,7 +346,7 @@ identical for any thread count. backend ()doc" +
 max_pairs refuses a list of more pairs (a batch: in total) before it is allocated, from an
 estimate, or as soon as the stored pairs pass it; 0 = no limit. max_bytes does the same for
 the list's memory at its peak: the pairs times the bytes of the quantities stored, plus the
-working space of grouping or sorting (None: three quarters of this machine's physical memory;
+working space of grouping or sorting (None: three quarters of the memory this process may use;
 0 = no limit).
 Array arguments take any array-like of real numbers (floats or integers, any byte order, memory
 order or strides; species integers, periodic bools or 0 and 1): another kind of value (bool,

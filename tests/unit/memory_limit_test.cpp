@@ -11,8 +11,6 @@
 
 #include <gtest/gtest.h>
 
-#include <unistd.h>
-
 #include "search/list_limits.hpp"
 #include "search/pair_sink.hpp"
 #include "tricell/batch.hpp"
@@ -73,12 +71,6 @@ double estimate_of(const std::vector<Eigen::Vector3d>& x, const NeighborOptions&
 }
 
 } // namespace
-
-TEST(MaxBytes, DefaultIsThreeQuartersOfThePhysicalMemory) {
-    const double physical = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
-    EXPECT_EQ(NeighborOptions().max_bytes, tricell::default_max_bytes());
-    EXPECT_NEAR(double(tricell::default_max_bytes()), 0.75 * physical, 1.0);
-}
 
 TEST(MaxBytes, TheModelCountsEachColumnAndTheOrdersWorkingSpace) {
     NeighborOptions o;
