@@ -142,7 +142,8 @@ class BlockReader {
         tricell::detail::fail_parse(doc_.name, line, std::forward<Args>(args)...);
     }
 
-    /// Fails for a tag without value and for a tag given twice.
+    /// Fails for a tag without value, a loop without values (gemmi accepts one at the end of
+    /// the file) and a tag given twice.
     void check_items() const {
         std::map<std::string, std::size_t> seen;
         for (const cif::Item& item : block_.items) {
@@ -154,6 +155,9 @@ class BlockReader {
                 }
                 tags.push_back(item.pair[0]);
             } else if (item.type == cif::ItemType::Loop) {
+                if (item.loop.values.empty()) {
+                    fail(line, "the loop of ", item.loop.tags[0], " has no values");
+                }
                 tags = item.loop.tags;
             }
             for (const std::string& tag : tags) {

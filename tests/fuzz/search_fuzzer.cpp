@@ -45,7 +45,6 @@ using tricell::NeighborOptions;
 using tricell::fuzz::broken;
 using tricell::fuzz::check_message;
 using tricell::testing::PairKey;
-using tricell::testing::PairMap;
 
 constexpr std::size_t max_atoms = 8;
 constexpr std::size_t max_pairs =
@@ -291,13 +290,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
     const bool have_oracle =
         tricell::fuzz::oracle_affordable(box, x, options.cutoff, max_oracle_work);
+    const auto cutoff_of = [&](std::uint32_t, std::uint32_t) { return options.cutoff; };
     tricell::fuzz::PairRows expected;
     if (have_oracle) {
-        PairMap pairs = tricell::testing::brute_force_pairs(box, x, options.cutoff);
-        expected =
-            tricell::fuzz::rows_of(options.half ? tricell::testing::canonical_half(pairs) : pairs);
+        expected = tricell::fuzz::oracle_rows(box, x, options.cutoff, cutoff_of, options.half);
     }
-    const auto cutoff_of = [&](std::uint32_t, std::uint32_t) { return options.cutoff; };
 
     int rejected = -1; // unknown until the first engine ran
     std::string first_message;

@@ -203,6 +203,14 @@ TEST(CifReaderErrors, IncompleteLoopRowIsATruncatedFile) {
                      "but its last row has 3 values (truncated file or missing value?)");
 }
 
+TEST(CifReaderErrors, LoopWithoutValuesAtTheEndOfTheFile) {
+    // The cif fuzzer's find: a cell length given as a tag of an empty loop was read as row 0.
+    EXPECT_THROW_MSG(cif("data_test\nloop_\n_atom_site_label\n_cell_length_a\n"), ParseError,
+                     "test.cif:2: the loop of _atom_site_label has no values");
+    EXPECT_THROW_MSG(cif(cell() + sites_header), ParseError,
+                     "test.cif:8: the loop of _atom_site_label has no values");
+}
+
 TEST(CifReaderErrors, MissingCell) {
     std::string text = cell() + sites_header + "A1 Na 0.1 0.2 0.3\n";
     text.replace(text.find("_cell_angle_beta 90\n"), 20, "");

@@ -27,9 +27,12 @@ struct PairValue {
 
 using PairMap = std::map<PairKey, PairValue>;
 
-inline PairMap brute_force_pairs(const Box& box, const std::vector<Eigen::Vector3d>& x,
-                                 double cutoff) {
-    PairMap out;
+/// Every pair (i, j, S) with d < cutoff, handed to visit(key, value) in increasing key order
+/// (i, then j, then S lexicographically): the oracle's one loop, which the map below and the
+/// fuzzers' sorted rows are both filled from.
+template <class Visit>
+void for_each_brute_force_pair(const Box& box, const std::vector<Eigen::Vector3d>& x, double cutoff,
+                               const Visit& visit) {
     const Eigen::Matrix3d& h = box.matrix();
     const Eigen::Vector3d& w = box.perpendicular_widths();
     std::vector<Eigen::Vector3d> s(x.size());
@@ -61,39 +64,61 @@ inline PairMap brute_force_pairs(const Box& box, const std::vector<Eigen::Vector
                         // sqrt(d_sq) < cutoff, not d_sq < cutoff^2: the square of a tiny
                         // cutoff underflows to 0 (coincident atoms at d = 0 are neighbours).
                         if (std::sqrt(d_sq) < cutoff) {
-                            out[PairKey{i, j, a, b, c}] = PairValue{std::sqrt(d_sq), d};
+                            visit(PairKey{i, j, a, b, c}, PairValue{std::sqrt(d_sq), d});
                         }
                     }
                 }
             }
         }
     }
+}
+
+inline PairMap brute_force_pairs(const Box& box, const std::vector<Eigen::Vector3d>& x,
+                                 double cutoff) {
+    PairMap out;
+    for_each_brute_force_pair(box, x, cutoff, [&](const PairKey& key, const PairValue& value) {
+        out.emplace_hint(out.end(), key, value);
+    });
     return out;
 }
 
 /// The oracle for variable cutoffs (per-atom radii, a species table): brute force at `largest`
-/// (at least every pair's cutoff), keeping the pairs with d < cutoff_of(i, j).
+/// (at least every pair's cutoff), visiting the pairs with d < cutoff_of(i, j) in key order.
+template <class CutoffOf, class Visit>
+void for_each_brute_force_pair(const Box& box, const std::vector<Eigen::Vector3d>& x,
+                               double largest, const CutoffOf& cutoff_of, const Visit& visit) {
+    for_each_brute_force_pair(box, x, largest, [&](const PairKey& key, const PairValue& value) {
+        if (value.distance < cutoff_of(std::get<0>(key), std::get<1>(key))) {
+            visit(key, value);
+        }
+    });
+}
+
 template <class CutoffOf>
 PairMap brute_force_pairs(const Box& box, const std::vector<Eigen::Vector3d>& x, double largest,
                           const CutoffOf& cutoff_of) {
     PairMap out;
-    for (const auto& [key, value] : brute_force_pairs(box, x, largest)) {
-        if (value.distance < cutoff_of(std::get<0>(key), std::get<1>(key))) {
-            out.emplace(key, value);
-        }
-    }
+    for_each_brute_force_pair(box, x, largest, cutoff_of,
+                              [&](const PairKey& key, const PairValue& value) {
+                                  out.emplace_hint(out.end(), key, value);
+                              });
     return out;
 }
 
-/// The half list that the contract's canonical orientation keeps from a full list:
+/// Whether a pair is in the half list that the contract's canonical orientation keeps:
 /// i < j, or i == j with S lexicographically positive.
+inline bool in_canonical_half(const PairKey& key) {
+    const auto& [i, j, a, b, c] = key;
+    const bool positive = a > 0 || (a == 0 && (b > 0 || (b == 0 && c > 0)));
+    return i < j || (i == j && positive);
+}
+
+/// The half list that the contract's canonical orientation keeps from a full list.
 inline PairMap canonical_half(const PairMap& full) {
     PairMap out;
     for (const auto& [key, value] : full) {
-        const auto& [i, j, a, b, c] = key;
-        const bool positive = a > 0 || (a == 0 && (b > 0 || (b == 0 && c > 0)));
-        if (i < j || (i == j && positive)) {
-            out.emplace(key, value);
+        if (in_canonical_half(key)) {
+            out.emplace_hint(out.end(), key, value);
         }
     }
     return out;
