@@ -99,9 +99,9 @@ class CandidateScanner {
                      bool reduced_frame, PairSink& sink, const std::uint8_t* query = nullptr,
                      bool subset_half = false)
         : x_(atoms.x.data()), y_(atoms.y.data()), z_(atoms.z.data()), image_(atoms.image.data()),
-          zero_images_(atoms.zero_images), index_(atoms.index.data()), h_(h), cutoff_sq_(cutoff_sq), rule_(rule), half_(half),
-          to_caller_(to_caller), reduced_frame_(reduced_frame), sink_(sink), query_(query),
-          subset_half_(subset_half) {}
+          zero_images_(atoms.zero_images), index_(atoms.index.data()), h_(h), cutoff_sq_(cutoff_sq),
+          rule_(rule), half_(half), to_caller_(to_caller), reduced_frame_(reduced_frame),
+          sink_(sink), query_(query), subset_half_(subset_half) {}
 
     /// Whether atom a can be the first atom of a pair (false only outside the query of a full
     /// subset list); backends that name single pairs skip the others early.
