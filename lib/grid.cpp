@@ -26,10 +26,24 @@ namespace {
 // flat index of three axes (2^60) in 64 bits.
 constexpr double max_cells_per_axis = double(1 << 20);
 
-// Cells that fit along an axis of real thickness `thickness` with target size h, at most
-// `limit` (so that cell counts stay representable).
-int cells_along(double thickness, double h, double limit) {
-    const double n = std::floor(thickness / h); // NaN for 0 / 0 (a flat axis, h underflowed)
+// x * y / z for x, y, z >= 0, without the intermediate overflow or underflow of x * y: the
+// mantissas and the exponents are combined apart, so the result is inf or 0 only when the true
+// value is (coordinates near the largest double on an open axis, whose fractional span times
+// the width overflowed to inf, got 2^20 cells and a stencil of millions of offsets).
+double scaled_ratio(double x, double y, double z) {
+    int ex = 0, ey = 0, ez = 0;
+    const double mx = std::frexp(x, &ex), my = std::frexp(y, &ey), mz = std::frexp(z, &ez);
+    return std::ldexp(mx * my / mz, ex + ey - ez);
+}
+
+// Cells that fit along an axis of fractional span `span` and perpendicular width `width` with
+// target size h, at most `limit` (so that cell counts stay representable).
+int cells_along(double span, double width, double h, double limit) {
+    double wanted = span * width / h;
+    if (std::isinf(wanted) && std::isfinite(span)) {
+        wanted = scaled_ratio(span, width, h);
+    }
+    const double n = std::floor(wanted); // NaN for 0 / 0 (a flat axis, h underflowed)
     return !(n >= 1) ? 1 : static_cast<int>(std::min({n, limit, max_cells_per_axis}));
 }
 
@@ -40,8 +54,7 @@ CellGrid::CellGrid(const Box& box, const GridOptions& options, const Eigen::Vect
     : pbc_(box.periodicity()) {
     options.validate();
     const Eigen::Vector3d& widths = box.perpendicular_widths();
-    // Real thickness of the region the grid covers along each axis, and its fractional span.
-    Eigen::Vector3d thickness;
+    // The fractional span of the region the grid covers along each axis.
     Eigen::Vector3d span;
     for (int axis = 0; axis < 3; ++axis) {
         if (pbc_[axis]) {
@@ -51,14 +64,13 @@ CellGrid::CellGrid(const Box& box, const GridOptions& options, const Eigen::Vect
             origin_[axis] = lower[axis];
             span[axis] = std::max(upper[axis] - lower[axis], 0.0);
         }
-        thickness[axis] = span[axis] * widths[axis];
     }
 
     const double max_cells = static_cast<double>(options.max_cells);
     double h = options.search_radius / options.cells_per_cutoff;
     for (;;) {
         for (int axis = 0; axis < 3; ++axis) {
-            dims_[axis] = cells_along(thickness[axis], h, max_cells);
+            dims_[axis] = cells_along(span[axis], widths[axis], h, max_cells);
         }
         if (double(dims_[0]) * double(dims_[1]) * double(dims_[2]) <= max_cells) {
             break;
@@ -78,8 +90,10 @@ CellGrid::CellGrid(const Box& box, const GridOptions& options, const Eigen::Vect
             cell_size_[axis] = 1; // all positions share one plane: any size, every atom in cell 0
         }
         inverse_size_[axis] = 1.0 / cell_size_[axis];
-        // A pair within the radius is at most r / (w * cell_size) cell layers apart.
-        const double layers = options.search_radius / (widths[axis] * cell_size_[axis]);
+        // A pair within the radius is at most r / (w * cell_size) cell layers apart, at least
+        // one (the cells' real thickness can overflow to inf, and r / inf is 0).
+        const double layers =
+            std::max(options.search_radius / (widths[axis] * cell_size_[axis]), 1.0);
         if (!pbc_[axis]) {
             // No images: the grid's end is the end.
             reach_[axis] =

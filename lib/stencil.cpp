@@ -8,11 +8,15 @@ namespace tricell {
 
 double closest_approach_sq(const Eigen::Matrix3d& h, const Eigen::Vector3d& lower,
                            const Eigen::Vector3d& upper) {
+    return closest_approach_sq(h, h.transpose() * h, lower, upper);
+}
+
+double closest_approach_sq(const Eigen::Matrix3d& h, const Eigen::Matrix3d& gram,
+                           const Eigen::Vector3d& lower, const Eigen::Vector3d& upper) {
     // The origin inside the box: the cells touch or overlap.
     if ((lower.array() <= 0).all() && (upper.array() >= 0).all()) {
         return 0;
     }
-    const Eigen::Matrix3d gram = h.transpose() * h;
     double best = std::numeric_limits<double>::infinity();
     // state 0: at lower bound, 1: at upper bound, 2: free (stationary given the others).
     for (int code = 0; code < 27; ++code) {
@@ -85,6 +89,7 @@ std::vector<CellOffset> kept_offsets(const CellGrid& grid, const Box& box, doubl
     const std::array<int, 3>& m = grid.reach();
     const Eigen::Vector3d& f = grid.cell_size();
     const Eigen::Vector3d& w = box.perpendicular_widths();
+    const Eigen::Matrix3d gram = box.matrix().transpose() * box.matrix();
     const double radius_sq = radius * radius;
     std::vector<CellOffset> kept;
     if (half) {
@@ -114,7 +119,7 @@ std::vector<CellOffset> kept_offsets(const CellGrid& grid, const Box& box, doubl
                     kept.push_back(d);
                     continue;
                 }
-                if (exact && closest_approach_sq(box.matrix(), lower, upper) >= radius_sq) {
+                if (exact && closest_approach_sq(box.matrix(), gram, lower, upper) >= radius_sq) {
                     continue;
                 }
                 kept.push_back(d);

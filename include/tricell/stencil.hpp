@@ -84,5 +84,8 @@ class TRICELL_API Stencil {
 /// exactly by enumerating the active sets of the box constraints.
 TRICELL_API double closest_approach_sq(const Eigen::Matrix3d& h, const Eigen::Vector3d& lower,
                                        const Eigen::Vector3d& upper);
+/// The same with the Gram matrix H^T H given, for callers that test many boxes in one metric.
+TRICELL_API double closest_approach_sq(const Eigen::Matrix3d& h, const Eigen::Matrix3d& gram,
+                                       const Eigen::Vector3d& lower, const Eigen::Vector3d& upper);
 
 } // namespace tricell

@@ -24,12 +24,10 @@
 namespace tricell::detail {
 
 /// Occupancy of every work unit: its atoms and its fractional volume (for the work and pair-count
-/// estimates from the occupancy moments, cost_model.hpp), and how many units a unit is paired
-/// with on average (its stencil).
+/// estimates from the occupancy moments, cost_model.hpp).
 struct UnitOccupancy {
     std::vector<double> atoms;
     std::vector<double> volume;
-    double neighbours = 0;
 };
 
 /// What every backend is given to bin: the search frame and the wrapped fractional positions.
@@ -52,8 +50,11 @@ class Backend {
     /// Work units that threads split (visited in this order; concatenating the pairs of
     /// consecutive unit ranges gives the pairs of the whole range).
     virtual std::size_t unit_count() const = 0;
-    /// Atoms and fractional volume of each unit, and the units each is paired with.
+    /// Atoms and fractional volume of each unit.
     virtual void occupancy(UnitOccupancy& out) const = 0;
+    /// How many units a unit is paired with on average (its stencil): for the work estimate of a
+    /// threaded split only, so a backend may compute it here, on demand.
+    virtual double neighbours() const = 0;
     /// Names the candidates of units [begin, end) to the scanner.
     virtual void visit(std::size_t begin, std::size_t end, CandidateScanner& scan) const = 0;
     /// Fills the backend-specific fields of info (backend, cells, stored_cells).

@@ -37,8 +37,9 @@ class DenseBackend final : public Backend {
             out.atoms[c] = double(sorted_.cell_end(c) - sorted_.cell_start(c));
         }
         out.volume.assign(unit_count(), cells_.cell_volume());
-        out.neighbours = double(cells_.stencil().size());
     }
+
+    double neighbours() const override { return double(cells_.stencil().size()); }
 
     void visit(std::size_t begin, std::size_t end, CandidateScanner& scan) const override {
         const std::array<int, 3>& n = cells_.grid().dims();

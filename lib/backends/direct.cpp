@@ -142,8 +142,9 @@ class DirectBackend final : public Backend {
         // One atom per unit over 1/N of the box (so the pair estimate is the mean density's).
         out.atoms.assign(atoms_, 1.0);
         out.volume.assign(atoms_, atoms_ > 0 ? 1.0 / double(atoms_) : 1.0);
-        out.neighbours = double(atoms_) * double(all_.size());
     }
+
+    double neighbours() const override { return double(atoms_) * double(all_.size()); }
 
     void visit(std::size_t begin, std::size_t end, CandidateScanner& scan) const override {
         for (std::size_t a = begin; a < end; ++a) {

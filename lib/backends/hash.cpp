@@ -74,8 +74,9 @@ class HashBackend final : public Backend {
             out.atoms[e] = double(start_[e + 1] - start_[e]);
         }
         out.volume.assign(cell_.size(), cells_.cell_volume());
-        out.neighbours = double(cells_.stencil().size());
     }
+
+    double neighbours() const override { return double(cells_.stencil().size()); }
 
     void visit(std::size_t begin, std::size_t end, CandidateScanner& scan) const override {
         const CellGrid& grid = cells_.grid();

@@ -36,8 +36,9 @@ class LinkedBackend final : public Backend {
             }
         }
         out.volume.assign(unit_count(), cells_.cell_volume());
-        out.neighbours = double(cells_.stencil().size());
     }
+
+    double neighbours() const override { return double(cells_.stencil().size()); }
 
     void visit(std::size_t begin, std::size_t end, CandidateScanner& scan) const override {
         for (std::size_t c1 = begin; c1 < end; ++c1) {

@@ -67,7 +67,8 @@ class OctreeBackend final : public Backend {
         for (int k = 0; k < 3; ++k) {
             edge_[k] = h_.col(k).norm();
         }
-        const Eigen::Matrix3d gram = h_.transpose() * h_;
+        gram_ = h_.transpose() * h_;
+        const Eigen::Matrix3d& gram = gram_;
         // At right angles up to rounding (90 degrees from parameters is cos = 6e-17): the error of
         // the orthogonal formula is then far below the search radius's margin.
         auto square = [&](int i, int j) {
@@ -118,18 +119,6 @@ class OctreeBackend final : public Backend {
         scratch_.clear();
         scratch_.shrink_to_fit();
         choose_shifts(input.frame.periodicity());
-        // The average number of candidate leaves (for the work estimate), from a few evenly
-        // spaced leaves.
-        const std::size_t samples = std::min<std::size_t>(leaves_.size(), 32);
-        double total = 0;
-        for (std::size_t k = 0; k < samples; ++k) {
-            const std::size_t l = k * leaves_.size() / samples;
-            for (const std::array<int, 3>& shift : shifts_) {
-                descend(nodes_[leaves_[l]], std::uint32_t(l), shift,
-                        [&](std::uint32_t) { total += 1; });
-            }
-        }
-        neighbours_ = samples > 0 ? total / double(samples) : 0;
     }
 
     std::size_t unit_count() const override { return leaves_.size(); }
@@ -141,7 +130,20 @@ class OctreeBackend final : public Backend {
             out.atoms[l] = double(leaf.end - leaf.begin);
         }
         out.volume = leaf_volume_;
-        out.neighbours = neighbours_;
+    }
+
+    // The average number of candidate leaves, from a few evenly spaced leaves.
+    double neighbours() const override {
+        const std::size_t samples = std::min<std::size_t>(leaves_.size(), 32);
+        double total = 0;
+        for (std::size_t k = 0; k < samples; ++k) {
+            const std::size_t l = k * leaves_.size() / samples;
+            for (const std::array<int, 3>& shift : shifts_) {
+                descend(nodes_[leaves_[l]], std::uint32_t(l), shift,
+                        [&](std::uint32_t) { total += 1; });
+            }
+        }
+        return samples > 0 ? total / double(samples) : 0;
     }
 
     void visit(std::size_t begin, std::size_t end, CandidateScanner& scan) const override {
@@ -237,7 +239,7 @@ class OctreeBackend final : public Backend {
         if (orthogonal_) { // the gaps are orthogonal: the closest approach is their sum
             return gap.cwiseProduct(widths_).squaredNorm() < radius_sq_;
         }
-        return closest_approach_sq(h_, lower, upper) < radius_sq_;
+        return closest_approach_sq(h_, gram_, lower, upper) < radius_sq_;
     }
 
     // Calls found(leaf) for every leaf B that box a reaches through shift s, in leaf order (half
@@ -393,6 +395,7 @@ class OctreeBackend final : public Backend {
     }
 
     Eigen::Matrix3d h_ = Eigen::Matrix3d::Identity();
+    Eigen::Matrix3d gram_ = Eigen::Matrix3d::Identity(); // H^T H
     Eigen::Vector3d widths_ = Eigen::Vector3d::Ones();
     Eigen::Vector3d edge_ = Eigen::Vector3d::Ones();
     double radius_ = 0, radius_sq_ = 0;
@@ -402,7 +405,6 @@ class OctreeBackend final : public Backend {
     std::vector<Node> nodes_;
     std::vector<std::uint32_t> group_;  // the node whose candidates each leaf filters
     std::vector<double> leaf_volume_;   // fractional volume of each leaf's region
-    double neighbours_ = 0;             // average candidate leaves of a leaf
     std::vector<std::uint32_t> leaves_; // node of each leaf, in atom order
     std::vector<std::array<int, 3>> shifts_;
     std::vector<std::uint32_t> scratch_;

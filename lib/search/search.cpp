@@ -160,8 +160,9 @@ void NeighborSearch::compute(NeighborList& out) const {
             sink.finish();
         } else {
             std::vector<double> work(units);
+            const double neighbours = s.backend->neighbours();
             for (std::size_t u = 0; u < units; ++u) {
-                work[u] = occupancy_work(occupancy.atoms[u], occupancy.neighbours);
+                work[u] = occupancy_work(occupancy.atoms[u], neighbours);
             }
             const detail::BatchPlan plan = detail::plan_batches(work, expected, threads);
             detail::ordered_search(columns_of(columns), plan, std::max(room, columns.i.capacity()),
@@ -243,8 +244,9 @@ UnitWork NeighborSearch::unit_work() const {
     work.measured.resize(units);
     auto discard = [](void*, const PairBlock&) {};
     detail::PairSink sink(discard, nullptr, s.to_caller, false);
+    const double neighbours = s.backend->neighbours();
     for (std::size_t u = 0; u < units; ++u) {
-        work.estimated[u] = occupancy_work(occupancy.atoms[u], occupancy.neighbours);
+        work.estimated[u] = occupancy_work(occupancy.atoms[u], neighbours);
         detail::CandidateScanner scan = s.scanner(sink);
         s.backend->visit(u, u + 1, scan);
         work.measured[u] = double(scan.tests());

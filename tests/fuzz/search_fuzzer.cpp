@@ -50,7 +50,6 @@ constexpr std::size_t max_atoms = 8;
 constexpr std::size_t max_pairs =
     4000; // larger lists are refused: their maps cost seconds per input
 constexpr double max_oracle_work = 2e5; // pair-image tests
-constexpr double max_images = 1e4;      // periodic images within the cutoff
 
 double pick(FuzzedDataProvider& in, std::initializer_list<double> values) {
     const std::size_t k = in.ConsumeIntegralInRange<std::size_t>(0, values.size() - 1);
@@ -263,14 +262,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     options.max_pairs = max_pairs;
     options.quantities.shifts = options.quantities.distances = options.quantities.vectors = true;
 
-    // Speed, not correctness: every backend's work grows with the periodic images within the
-    // cutoff. The earlier bound (20 perpendicular widths, so up to ~8e4 images over three axes)
-    // let the slowest corpus input take 14 s under the sanitizers on a loaded machine, past
-    // -timeout=10. 1e4 images still allow 20 widths along one axis or ~10 along each of three.
-    // A cutoff the search refuses (0, negative, NaN, infinite) is fast and always checked.
-    if (std::isfinite(options.cutoff) && options.cutoff > 0 &&
-        !(tricell::fuzz::image_count(box, options.cutoff) <= max_images)) {
-        return 0;
+    if (tricell::fuzz::too_many_images(box, options.cutoff)) {
+        return 0; // speed (differential.hpp)
     }
     if (std::getenv("TRICELL_FUZZ_VERBOSE") != nullptr) {
         // For reading a crash: TRICELL_FUZZ_VERBOSE=1 search_fuzzer crash-...

@@ -154,6 +154,34 @@ TEST(SearchRegressions, OpenSpanThatOverflowsPutsEveryAtomInOneCell) {
     expect_oracle(c);
 }
 
+TEST(SearchRegressions, OpenThicknessThatOverflowsGivesTheCellsTheCutoffAsksFor) {
+    // Coordinates near the largest double on open axes and a cutoff of 1.43e308: the fractional
+    // span times the width overflowed to inf, so the uncapped hash grid took 2^20 cells along a,
+    // and its stencil reached 2^20 - 1 of them (ten million offsets, seconds for five atoms).
+    Eigen::Matrix3d h;
+    h << 1.4914716966093655, 6.2638413572929528, 6.2638413572929528, 3.9230834053831449,
+        2.6970325588255601, 8.3913159785590103, 2.7175225431669503, 1.8682362878665073,
+        -6.3521734547040385;
+    Case c{"open thickness past the largest double", h, {}, {}, {}};
+    c.pbc.axes = {false, false, false};
+    c.x = {{1.4311047308903924e+308, 1.4311047308903924e+308, 1.4311047308903924e+308},
+           {1.4311047308903924e+308, 1.4311047308903924e+308, 1.431084501432212e+308},
+           {1.7916309677670916e+308, 4.9406564584124654e-324, -3.3703116638213762e+298},
+           {3.4303152138260473, 4.5954003659046281, -3.4786891939980742},
+           {-6.2638413572929528e-17, -2.6970325588255602e-17, -1.8682362878665076e-17}};
+    c.options.cutoff = 1.4311047308969323e+308;
+    c.options.half = true;
+    c.options.cells_per_cutoff = 3;
+    expect_oracle(c);
+    NeighborOptions options = c.options;
+    options.backend = SearchBackend::hash;
+    tricell::NeighborSearch search;
+    search.build(Box::from_columns(c.h, c.pbc), c.x, options);
+    for (const int cells : search.info().cells) {
+        EXPECT_LE(cells, 16);
+    }
+}
+
 TEST(SearchRegressions, AutomaticChoiceWithADenormalOpenExtent) {
     Eigen::Matrix3d h;
     h << 5, 0, 0, 0, 5, 0, 0, 0, 1;
