@@ -435,13 +435,6 @@ double largest_cutoff(const tricell_neighbor_options& o, std::size_t n) {
     return o.cutoff;
 }
 
-// Whether a search at `cutoff` in this box would reach more periodic images than the harness
-// allows (a box the C++ API refuses is always searched: the refusal is fast).
-bool too_many_images(const tricell_box& box, double cutoff) {
-    const std::optional<tricell::Box> b = cxx_box(box);
-    return b && tricell::fuzz::too_many_images(*b, cutoff);
-}
-
 // The same options for the C++ API, copied field by field as a C caller means them.
 std::optional<tricell::NeighborOptions> cxx_options(const tricell_neighbor_options& o,
                                                     std::size_t n) {
@@ -552,7 +545,9 @@ void neighbors(FuzzedDataProvider& in, State& state) {
         in.ConsumeIntegralInRange(0, 15) == 0 ? nullptr : state.search;
     const bool null_options = in.ConsumeIntegralInRange(0, 15) == 0;
     const bool null_list = in.ConsumeIntegralInRange(0, 31) == 0;
-    if (!lying && box != nullptr && too_many_images(*box, largest_cutoff(options, n))) {
+    // The C++ box of the call (none for NULL or a box the C++ API refuses: a fast refusal).
+    const std::optional<tricell::Box> cbox = box != nullptr ? cxx_box(*box) : std::nullopt;
+    if (!lying && cbox && tricell::fuzz::too_many_images(*cbox, largest_cutoff(options, n))) {
         return; // speed (differential.hpp)
     }
     const tricell_status status = tricell_neighbors(
@@ -576,7 +571,6 @@ void neighbors(FuzzedDataProvider& in, State& state) {
         return;
     }
     // The C++ API with the same arguments: the same outcome, message and arrays.
-    const std::optional<tricell::Box> cbox = cxx_box(*box);
     const std::optional<tricell::NeighborOptions> copts = cxx_options(options, n);
     if (!cbox || !copts) {
         if (ok) {
@@ -714,7 +708,8 @@ void verlet_update(FuzzedDataProvider& in, State& state) {
     }
     int rebuilt = -7;
     const bool want_rebuilt = in.ConsumeBool();
-    if (box != nullptr && too_many_images(*box, o.cutoff + state.verlet_options.skin)) {
+    const std::optional<tricell::Box> cbox = box != nullptr ? cxx_box(*box) : std::nullopt;
+    if (cbox && tricell::fuzz::too_many_images(*cbox, o.cutoff + state.verlet_options.skin)) {
         return; // speed (differential.hpp)
     }
     const tricell_status status =
@@ -737,7 +732,6 @@ void verlet_update(FuzzedDataProvider& in, State& state) {
     if (want_rebuilt && rebuilt != 0 && rebuilt != 1) {
         broken("tricell_verlet_update set *rebuilt to " + std::to_string(rebuilt));
     }
-    const std::optional<tricell::Box> cbox = cxx_box(*box);
     if (!cbox) {
         broken("tricell_verlet_update accepted a box the C++ API refuses");
     }
