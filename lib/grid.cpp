@@ -28,8 +28,9 @@ constexpr double max_cells_per_axis = double(1 << 20);
 
 // x * y / z for x, y, z >= 0, without the intermediate overflow or underflow of x * y: the
 // mantissas and the exponents are combined apart, so the result is inf or 0 only when the true
-// value is (coordinates near the largest double on an open axis, whose fractional span times
-// the width overflowed to inf, got 2^20 cells and a stencil of millions of offsets).
+// value is. An open axis spanning 1e308 in fractional units, a few units wide, with a cutoff
+// near 1e308 asks for a few cells, not for the 2^20 of an overflowed thickness (whose stencil
+// would reach all of them).
 double scaled_ratio(double x, double y, double z) {
     int ex = 0, ey = 0, ez = 0;
     const double mx = std::frexp(x, &ex), my = std::frexp(y, &ey), mz = std::frexp(z, &ez);
