@@ -565,10 +565,8 @@ class CandidateScanner {
         if (i != j) {
             return i > j;
         }
-        Eigen::Vector3i caller(sa, sb, sc);
-        if (reduced_frame_) {
-            caller = to_caller_ * caller;
-        }
+        const Eigen::Vector3i caller =
+            reduced_frame_ ? caller_shift(to_caller_, sa, sb, sc) : Eigen::Vector3i(sa, sb, sc);
         return lexicographically_positive(-caller[0], -caller[1], -caller[2]);
     }
 

@@ -1,10 +1,13 @@
 #include "search/frame.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <limits>
 
 #include "detail/lattice_reduction.hpp"
 #include "detail/parallel.hpp"
+#include "search/caller_shift.hpp"
 #include "tricell/error.hpp"
 
 namespace tricell::detail {
@@ -75,6 +78,33 @@ void wrap_positions(const Box& frame, PointsView positions, std::size_t threads,
     }
 }
 
+void check_caller_range(const Box& caller_box, const Eigen::Matrix3i& to_caller,
+                        PointsView positions, const PairArray<std::int32_t>& image,
+                        std::size_t threads) {
+    if (to_caller == Eigen::Matrix3i::Identity()) {
+        return;
+    }
+    std::array<double, 3> largest{{0, 0, 0}};
+    for (std::size_t k = 0; k < image.size(); ++k) {
+        largest[k % 3] = std::max(largest[k % 3], std::abs(double(image[k])));
+    }
+    bool within = true;
+    for (int row = 0; row < 3; ++row) {
+        if (!caller_box.periodic(row)) {
+            continue;
+        }
+        double bound = 0;
+        for (int l = 0; l < 3; ++l) {
+            bound += std::abs(double(to_caller(row, l))) * (largest[std::size_t(l)] + 1);
+        }
+        within = within && bound <= Box::max_fractional;
+    }
+    if (!within) {
+        WrappedPositions caller;
+        wrap_positions(caller_box, positions, threads, caller); // throws as the caller's box does
+    }
+}
+
 void fill_atom_table(const Eigen::Matrix3d& h, PointsView positions,
                      const PairArray<std::int32_t>& image, std::vector<std::uint32_t> order,
                      std::size_t threads, AtomTable& atoms) {
@@ -103,8 +133,7 @@ void fill_atom_table(const Eigen::Matrix3d& h, PointsView positions,
 
 void to_caller_frame(PairArray<std::int32_t>& shifts, const Eigen::Matrix3i& to_caller) {
     for (std::size_t k = 0; k < shifts.size(); k += 3) {
-        const Eigen::Vector3i s =
-            to_caller * Eigen::Vector3i(shifts[k], shifts[k + 1], shifts[k + 2]);
+        const Eigen::Vector3i s = caller_shift(to_caller, shifts[k], shifts[k + 1], shifts[k + 2]);
         shifts[k] = s[0];
         shifts[k + 1] = s[1];
         shifts[k + 2] = s[2];

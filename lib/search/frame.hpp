@@ -37,6 +37,16 @@ struct WrappedPositions {
 void wrap_positions(const Box& frame, PointsView positions, std::size_t threads,
                     WrappedPositions& out);
 
+/// In a reduced frame (to_caller not the identity), refuses with the caller's own box's message
+/// a position more than Box::max_fractional caller box lengths away along a periodic axis, as a
+/// search in the caller's frame does: the reduced frame's wrap bounds only the reduced
+/// coordinates, and a shift in the caller's frame must fit an int. `image` are the reduced
+/// frame's images; the caller's coordinates are computed only when their bound from those
+/// images, sum_l |T_kl| (|c'_l| + 1), passes the limit.
+void check_caller_range(const Box& caller_box, const Eigen::Matrix3i& to_caller,
+                        PointsView positions, const PairArray<std::int32_t>& image,
+                        std::size_t threads);
+
 /// Fills `atoms` in the backend's `order` with the wrapped Cartesian positions x - H image
 /// (exactly x for atoms already in the box) and their images.
 void fill_atom_table(const Eigen::Matrix3d& h, PointsView positions,

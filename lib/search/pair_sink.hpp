@@ -14,6 +14,7 @@
 
 #include <Eigen/Core>
 
+#include "search/caller_shift.hpp"
 #include "search/distance_kernel.hpp"
 #include "search/list_limits.hpp"
 #include "tricell/error.hpp"
@@ -174,7 +175,7 @@ class PairSink {
         if (map_shifts_) {
             for (std::size_t k = 0; k < size_; ++k) {
                 Eigen::Map<Eigen::Vector3i> s(ps_ + 3 * k);
-                s = (to_caller_ * s).eval();
+                s = caller_shift(to_caller_, s[0], s[1], s[2]);
             }
         }
         on_block_(context_, PairBlock{size_, pi_, pj_, ps_, pv_, pd_});

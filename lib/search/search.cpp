@@ -79,6 +79,7 @@ void NeighborSearch::build(const Box& caller_box, PointsView positions,
 
     detail::WrappedPositions wrapped;
     detail::wrap_positions(box, positions, threads, wrapped);
+    detail::check_caller_range(caller_box, s.to_caller, positions, wrapped.image, threads);
     if (!(cutoff > 0) || n == 0 || query_size == 0) {
         s.atoms = detail::AtomTable();
         s.query.clear();

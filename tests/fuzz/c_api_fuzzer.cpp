@@ -550,6 +550,10 @@ void neighbors(FuzzedDataProvider& in, State& state) {
     if (!lying && cbox && tricell::fuzz::too_many_images(*cbox, largest_cutoff(options, n))) {
         return; // speed (differential.hpp)
     }
+    if (verbose && box != nullptr && !lying) {
+        std::fprintf(stderr, "tricell_neighbors\n");
+        print_call(*box, x, options);
+    }
     const tricell_status status = tricell_neighbors(
         search, box, data, n, null_options ? nullptr : &options, null_list ? nullptr : state.list);
     const bool ok = check_status(status, "tricell_neighbors");

@@ -182,6 +182,40 @@ TEST(SearchRegressions, OpenThicknessThatOverflowsGivesTheCellsTheCutoffAsksFor)
     }
 }
 
+TEST(SearchRegressions, ReducedFrameRefusesWhatTheCallerFrameRefuses) {
+    // b = 333 a + (0, 1, 0): the search runs in the reduced frame a, b - 333 a, where an atom
+    // 3.4e7 lengths along y is 3.4e7 box lengths away, but in the caller's box it is 1.1e10 box
+    // lengths along a, past Box::max_fractional. The reduced search took it, and mapping its
+    // shifts to the caller's frame overflowed an int (-333 * 33333334; c_api_fuzzer, UBSan).
+    // Refused now, with the caller's box's message, whether the cell is reduced or not.
+    Eigen::Matrix3d h;
+    h << 1, 333, 0, 0, 1, 0, 0, 0, 1;
+    const Box box = Box::from_columns(h, tricell::Periodicity{});
+    const std::vector<Eigen::Vector3d> x = {{0, 0, 0}, {0.25, 3.4e7, 0}};
+    NeighborOptions options;
+    options.cutoff = 0.5;
+    options.quantities.shifts = true;
+    std::string unreduced;
+    options.reduce_cell = false;
+    try {
+        tricell::compute_neighbors(box, x, options);
+    } catch (const tricell::InvalidArgument& e) {
+        unreduced = e.what();
+    }
+    ASSERT_FALSE(unreduced.empty());
+    options.reduce_cell = true;
+    for (const SearchBackend backend : tricell::search_backends()) {
+        SCOPED_TRACE(tricell::backend_name(backend));
+        options.backend = backend;
+        try {
+            tricell::compute_neighbors(box, x, options);
+            ADD_FAILURE() << "accepted a position 1.1e10 caller box lengths away";
+        } catch (const tricell::InvalidArgument& e) {
+            EXPECT_EQ(std::string(e.what()), unreduced);
+        }
+    }
+}
+
 TEST(SearchRegressions, AutomaticChoiceWithADenormalOpenExtent) {
     Eigen::Matrix3d h;
     h << 5, 0, 0, 0, 5, 0, 0, 0, 1;
