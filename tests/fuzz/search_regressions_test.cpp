@@ -25,6 +25,7 @@ struct Case {
     tricell::Periodicity pbc;
     std::vector<Eigen::Vector3d> x;
     NeighborOptions options;
+    double tolerance = 1e-9; // on d against the oracle's (rounding of the coordinates)
 };
 
 void expect_oracle(Case c) {
@@ -43,7 +44,7 @@ void expect_oracle(Case c) {
         ASSERT_EQ(found.size(), expected.size());
         for (const auto& [key, value] : expected) {
             ASSERT_EQ(found.count(key), 1u);
-            EXPECT_NEAR(found.at(key).distance, value.distance, 1e-9);
+            EXPECT_NEAR(found.at(key).distance, value.distance, c.tolerance);
         }
     }
 }
@@ -214,6 +215,23 @@ TEST(SearchRegressions, ReducedFrameRefusesWhatTheCallerFrameRefuses) {
             EXPECT_EQ(std::string(e.what()), unreduced);
         }
     }
+}
+
+TEST(SearchRegressions, ReducedFrameShiftsAreMappedWithoutOverflow) {
+    // An atom 999 999 999 box lengths along a (within Box::max_fractional) in a box the search
+    // reduces: its shifts in the reduced frame mapped to the caller's as T S' with a product
+    // 6 * 999999999 past an int, though the sum fits (search_fuzzer, UBSan). Mapped in 64 bits.
+    Eigen::Matrix3d h;
+    h << 5, 5, 25.470873303711414, 0, 5, 0, 0, 0, 2;
+    Case c{"reduced frame, far atom", h, {}, {}, {}};
+    c.pbc.axes = {true, false, true};
+    c.x = {{4999999995, -5.0000000000000005e-17, -2.0000000000000001e-17}, {0, 0, 0}};
+    c.options.cutoff = 27.436570245818242;
+    c.options.half = true;
+    c.options.sorted = true;
+    c.options.cells_per_cutoff = 1.5;
+    c.tolerance = 1e-6; // the far atom's coordinate 5e9 is known to 1e-6
+    expect_oracle(c);
 }
 
 TEST(SearchRegressions, AutomaticChoiceWithADenormalOpenExtent) {
