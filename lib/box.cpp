@@ -48,6 +48,14 @@ Box::Box(const Eigen::Matrix3d& h, Periodicity pbc) : h_(h), pbc_(pbc) {
         }
     }
     det_ = h_.determinant();
+    // The squared lengths and the volume must be doubles: past them the inverse is zero or NaN.
+    const Eigen::Vector3d squared_lengths = h_.colwise().squaredNorm();
+    if (!std::isfinite(det_) || !squared_lengths.allFinite()) {
+        detail::fail<GeometryError>("box is too large: |a|, |b|, |c| = ", h_.col(0).stableNorm(),
+                                    ", ", h_.col(1).stableNorm(), ", ", h_.col(2).stableNorm(),
+                                    " and |det H| = ", std::abs(det_),
+                                    " (the squared lengths and |det H| must be finite doubles)");
+    }
     // Flatness is judged on unit vectors, det(H) / (|a||b||c|), which neither overflows nor
     // underflows for boxes of any scale.
     Eigen::Matrix3d unit = h_;

@@ -179,9 +179,14 @@ Structure parse_poscar(const std::string& text, const std::string& name,
                                ", got ", quote(words[c]));
                 }
             }
-            structure.positions.push_back(cartesian
-                                              ? Eigen::Vector3d(x.cwiseProduct(cartesian_scale))
-                                              : Eigen::Vector3d(structure.box.matrix() * x));
+            const Eigen::Vector3d position = cartesian
+                                                 ? Eigen::Vector3d(x.cwiseProduct(cartesian_scale))
+                                                 : Eigen::Vector3d(structure.box.matrix() * x);
+            if (!position.allFinite()) {
+                lines.fail(line, "atom ", atom, " is too far away: its coordinates times the ",
+                           cartesian ? "scale" : "lattice", " are not finite numbers");
+            }
+            structure.positions.push_back(position);
             structure.species.push_back(elements[k]);
             structure.labels.emplace_back(names[k]);
         }

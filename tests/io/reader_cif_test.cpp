@@ -241,6 +241,14 @@ TEST(CifReaderErrors, CellOutOfRange) {
                      "test.cif:2: invalid cell: ");
 }
 
+TEST(CifReaderErrors, CellTooLargeForDoubles) {
+    std::string huge = cell("1.7e308");
+    huge.replace(huge.find("_cell_length_b 6"), 16, "_cell_length_b 1.7e308");
+    huge.replace(huge.find("_cell_angle_gamma 90"), 20, "_cell_angle_gamma 60");
+    EXPECT_THROW_MSG(cif(huge + sites_header + "A1 Na 0.9 0.9 0\n"), ParseError,
+                     "test.cif:2: invalid cell: box is too large: |a|, |b|, |c| = 1.7e+308");
+}
+
 TEST(CifReaderErrors, MissingAtomSites) {
     EXPECT_THROW_MSG(cif(cell()), ParseError,
                      "test.cif:1: _atom_site_fract_x is missing in data_test, expected the atom "

@@ -138,6 +138,12 @@ TEST(PoscarReaderErrors, Positions) {
                      "POSCAR:10: expected 3 coordinates for atom 1, got 2");
     EXPECT_THROW_MSG(poscar(header() + "Si\n2\nDirect\n0 0 0\n0.5 nan 0.5\n"), ParseError,
                      "POSCAR:10: expected a number for coordinate 2 of atom 1, got 'nan'");
+    EXPECT_THROW_MSG(poscar(header() + "Si\n2\nDirect\n0 0 0\n0.5 0 1e308\n"), ParseError,
+                     "POSCAR:10: atom 1 is too far away: its coordinates times the lattice are "
+                     "not finite numbers");
+    EXPECT_THROW_MSG(poscar(header("2.0") + "Si\n1\nCartesian\n-1e308 0 0\n"), ParseError,
+                     "POSCAR:9: atom 0 is too far away: its coordinates times the scale are not "
+                     "finite numbers");
 }
 
 } // namespace

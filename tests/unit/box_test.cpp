@@ -350,6 +350,16 @@ TEST(Box, RejectsNonFiniteEntries) {
                      "lattice vector c component 1 is not finite (got inf)");
 }
 
+TEST(Box, RejectsBoxesTooLargeForDoubles) {
+    EXPECT_THROW_MSG(Box::from_columns(1e103 * Eigen::Matrix3d::Identity()), tricell::GeometryError,
+                     "box is too large: |a|, |b|, |c| = 1e+103, 1e+103, 1e+103 and |det H| = inf");
+    Eigen::Matrix3d h = Eigen::Matrix3d::Identity();
+    h(0, 0) = 2e154; // |a|^2 overflows, the volume does not
+    EXPECT_THROW_MSG(Box::from_columns(h), tricell::GeometryError,
+                     "box is too large: |a|, |b|, |c| = 2e+154, 1, 1 and |det H| = 2e+154");
+    EXPECT_NO_THROW(Box::from_columns(1e100 * Eigen::Matrix3d::Identity()));
+}
+
 TEST(Box, RejectsSingularAndNearlyFlatBoxes) {
     Eigen::Matrix3d h = triclinic_columns();
     h.col(2) = h.col(0) + h.col(1);
