@@ -1,6 +1,7 @@
 #include "tricell/stencil.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -11,6 +12,29 @@ double closest_approach_sq(const Eigen::Matrix3d& h, const Eigen::Vector3d& lowe
     return closest_approach_sq(h, h.transpose() * h, lower, upper);
 }
 
+// The active sets of the box constraints (each coordinate at its lower bound, its upper bound or
+// free), vertices first, then edges, then faces: code = s_0 + 3 s_1 + 9 s_2 with s_k = 0 (lower),
+// 1 (upper) or 2 (free).
+constexpr std::array<int, 26> active_sets = [] {
+    std::array<int, 26> sets{};
+    int n = 0;
+    for (int n_free = 0; n_free < 3; ++n_free) {
+        for (int code = 0; code < 27; ++code) {
+            const int free = (code % 3 == 2) + ((code / 3) % 3 == 2) + (code / 9 == 2);
+            if (free == n_free) {
+                sets[std::size_t(n++)] = code;
+            }
+        }
+    }
+    return sets;
+}();
+
+// |H u|^2 is convex, and its free minimum u = 0 lies outside the box, so its minimum over the box
+// lies on a vertex, an edge or a face. Each active set has one stationary point (the free
+// coordinates solve a 1x1 or 2x2 system in the Gram matrix G = H^T H). A feasible one at which the
+// gradient G u points out of the box on every bound coordinate meets the Karush-Kuhn-Tucker
+// conditions, which for a convex problem make it the minimum, so the enumeration stops there; the
+// least feasible value is the answer when rounding hides the conditions at every point.
 double closest_approach_sq(const Eigen::Matrix3d& h, const Eigen::Matrix3d& gram,
                            const Eigen::Vector3d& lower, const Eigen::Vector3d& upper) {
     // The origin inside the box: the cells touch or overlap.
@@ -18,8 +42,7 @@ double closest_approach_sq(const Eigen::Matrix3d& h, const Eigen::Matrix3d& gram
         return 0;
     }
     double best = std::numeric_limits<double>::infinity();
-    // state 0: at lower bound, 1: at upper bound, 2: free (stationary given the others).
-    for (int code = 0; code < 27; ++code) {
+    for (const int code : active_sets) {
         const int state[3] = {code % 3, (code / 3) % 3, code / 9};
         Eigen::Vector3d u;
         int free_axes[3];
@@ -31,9 +54,6 @@ double closest_approach_sq(const Eigen::Matrix3d& h, const Eigen::Matrix3d& gram
             } else {
                 u[k] = state[k] == 0 ? lower[k] : upper[k];
             }
-        }
-        if (n_free == 3) {
-            continue; // the free minimum is u = 0, inside the box only in the case above
         }
         if (n_free > 0) {
             // Minimise over the free coordinates: G_FF u_F = -G_FX u_X (1x1 or 2x2).
@@ -65,8 +85,35 @@ double closest_approach_sq(const Eigen::Matrix3d& h, const Eigen::Matrix3d& gram
             }
         }
         best = std::min(best, (h * u).squaredNorm());
+        const Eigen::Vector3d gradient = gram * u; // half the gradient of |H u|^2
+        bool minimum = true;
+        for (int k = 0; k < 3; ++k) {
+            minimum = minimum && !(state[k] == 0 && gradient[k] < 0) &&
+                      !(state[k] == 1 && gradient[k] > 0);
+        }
+        if (minimum) {
+            return best;
+        }
     }
     return best;
+}
+
+bool box_within_radius(const Eigen::Matrix3d& h, const Eigen::Matrix3d& gram,
+                       const Eigen::Vector3d& edges, const Eigen::Vector3d& lower,
+                       const Eigen::Vector3d& upper, double radius) {
+    if ((lower.array() <= 0).all() && (upper.array() >= 0).all()) {
+        return true; // the origin is in the box (even when radius^2 underflows to 0)
+    }
+    const double centre = (h * (0.5 * (lower + upper))).norm();
+    if (centre < radius) {
+        return true;
+    }
+    const double spread = 0.5 * edges.dot(upper - lower);
+    // A relative margin far above the rounding of the two sums keeps the bound a bound.
+    if (centre - spread > radius + 1e-12 * (centre + spread)) {
+        return false;
+    }
+    return closest_approach_sq(h, gram, lower, upper) < radius * radius;
 }
 
 namespace {
@@ -90,7 +137,7 @@ std::vector<CellOffset> kept_offsets(const CellGrid& grid, const Box& box, doubl
     const Eigen::Vector3d& f = grid.cell_size();
     const Eigen::Vector3d& w = box.perpendicular_widths();
     const Eigen::Matrix3d gram = box.matrix().transpose() * box.matrix();
-    const double radius_sq = radius * radius;
+    const Eigen::Vector3d edges = box.matrix().colwise().norm().transpose();
     std::vector<CellOffset> kept;
     if (half) {
         kept.push_back({{0, 0, 0}});
@@ -113,13 +160,7 @@ std::vector<CellOffset> kept_offsets(const CellGrid& grid, const Box& box, doubl
                 if (slab_gap >= radius) {
                     continue;
                 }
-                // The cell centres are one candidate pair: closer than the radius, keep at once.
-                const Eigen::Vector3d centre_offset(d[0] * f[0], d[1] * f[1], d[2] * f[2]);
-                if ((box.matrix() * centre_offset).squaredNorm() < radius_sq) {
-                    kept.push_back(d);
-                    continue;
-                }
-                if (exact && closest_approach_sq(box.matrix(), gram, lower, upper) >= radius_sq) {
+                if (exact && !box_within_radius(box.matrix(), gram, edges, lower, upper, radius)) {
                     continue;
                 }
                 kept.push_back(d);

@@ -87,5 +87,12 @@ TRICELL_API double closest_approach_sq(const Eigen::Matrix3d& h, const Eigen::Ve
 /// The same with the Gram matrix H^T H given, for callers that test many boxes in one metric.
 TRICELL_API double closest_approach_sq(const Eigen::Matrix3d& h, const Eigen::Matrix3d& gram,
                                        const Eigen::Vector3d& lower, const Eigen::Vector3d& upper);
+/// Whether some u in the box lower <= u <= upper has |H u| < radius. Two bounds around the box's
+/// centre c settle most boxes at the cost of one product H c: the centre itself (|H c| < radius:
+/// yes) and the triangle inequality |H u| >= |H c| - sum_k |a_k| |u_k - c_k| (no when that exceeds
+/// the radius); closest_approach_sq decides the boxes between them. `edges` holds |a_k|.
+TRICELL_API bool box_within_radius(const Eigen::Matrix3d& h, const Eigen::Matrix3d& gram,
+                                   const Eigen::Vector3d& edges, const Eigen::Vector3d& lower,
+                                   const Eigen::Vector3d& upper, double radius);
 
 } // namespace tricell

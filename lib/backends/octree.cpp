@@ -16,7 +16,7 @@
 // depth-first leaf order, so every node is one contiguous range of atoms and of leaves.
 //
 // Candidates. A node pair (A, B) through an image shift S is kept when the closest approach of
-// the fractional box B + S - A in the triclinic metric (closest_approach_sq, after a cheap lower
+// the fractional box B + S - A in the triclinic metric (box_within_radius, after a cheap lower
 // bound from the perpendicular widths; a plain sum of squared gaps when the lattice vectors are
 // at right angles) is below the search radius. The tree is descended once per shift for the
 // highest ancestor P holding at most eight leaves, collecting the leaves B that P reaches; each
@@ -239,7 +239,7 @@ class OctreeBackend final : public Backend {
         if (orthogonal_) { // the gaps are orthogonal: the closest approach is their sum
             return gap.cwiseProduct(widths_).squaredNorm() < radius_sq_;
         }
-        return closest_approach_sq(h_, gram_, lower, upper) < radius_sq_;
+        return box_within_radius(h_, gram_, edge_, lower, upper, radius_);
     }
 
     // Calls found(leaf) for every leaf B that box a reaches through shift s, in leaf order (half

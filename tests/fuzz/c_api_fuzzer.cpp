@@ -547,7 +547,8 @@ void neighbors(FuzzedDataProvider& in, State& state) {
     const bool null_list = in.ConsumeIntegralInRange(0, 31) == 0;
     // The C++ box of the call (none for NULL or a box the C++ API refuses: a fast refusal).
     const std::optional<tricell::Box> cbox = box != nullptr ? cxx_box(*box) : std::nullopt;
-    if (!lying && cbox && tricell::fuzz::too_many_images(*cbox, largest_cutoff(options, n))) {
+    if (!lying && cbox &&
+        tricell::fuzz::too_many_images(*cbox, largest_cutoff(options, n), x.size())) {
         return; // speed (differential.hpp)
     }
     if (verbose && box != nullptr && !lying) {
@@ -713,7 +714,8 @@ void verlet_update(FuzzedDataProvider& in, State& state) {
     int rebuilt = -7;
     const bool want_rebuilt = in.ConsumeBool();
     const std::optional<tricell::Box> cbox = box != nullptr ? cxx_box(*box) : std::nullopt;
-    if (cbox && tricell::fuzz::too_many_images(*cbox, o.cutoff + state.verlet_options.skin)) {
+    if (cbox &&
+        tricell::fuzz::too_many_images(*cbox, o.cutoff + state.verlet_options.skin, x.size())) {
         return; // speed (differential.hpp)
     }
     const tricell_status status =

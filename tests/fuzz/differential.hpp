@@ -257,15 +257,25 @@ inline double image_count(const Box& box, double cutoff) {
 }
 
 /// Speed, not correctness: every backend's work (its stencil's offsets, the octree's reachable
-/// images) grows with the periodic images within the cutoff. A search reaching more than
-/// `max_images` is not made (with ~8e4, the slowest search input took 14 s under the sanitizers
-/// on a loaded machine, and a C API input spent 15 s building a stencil). 1e4 images still allow
-/// 20 perpendicular widths along one axis or ~10 along each of three. A cutoff the search refuses
-/// (0, negative, NaN, infinite) is fast and always made.
+/// images, the pairs it tests) grows with the periodic images within the cutoff, and for these
+/// few atoms with the images times the atom pairs. A search reaching more than `max_images`, or
+/// more than `max_image_pairs` images times n^2, is not made (with ~8e4 images, the slowest search
+/// input took 14 s under the sanitizers on a loaded machine, and a C API input spent 15 s building
+/// a stencil; with 1e4 images and no bound on their product with n^2, the tenth of the inputs with
+/// the most images took two thirds of the search harness's time). One atom still gets 1e4 images
+/// (20 perpendicular widths along one axis, ~10 along each of three), eight atoms 625 (~2.8
+/// widths along each of three axes). A cutoff the search refuses (0, negative, NaN, infinite) is
+/// fast and always made.
 constexpr double max_images = 1e4;
+constexpr double max_image_pairs = 4e4;
 
-inline bool too_many_images(const Box& box, double cutoff) {
-    return std::isfinite(cutoff) && cutoff > 0 && !(image_count(box, cutoff) <= max_images);
+inline bool too_many_images(const Box& box, double cutoff, std::size_t n) {
+    if (!(std::isfinite(cutoff) && cutoff > 0)) {
+        return false;
+    }
+    const double images = image_count(box, cutoff);
+    const double atoms = double(std::max<std::size_t>(n, 1));
+    return !(images <= max_images) || !(images * atoms * atoms <= max_image_pairs);
 }
 
 /// Whether the oracle can run on these positions at this (largest) cutoff within `budget`

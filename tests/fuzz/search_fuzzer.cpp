@@ -262,7 +262,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     options.max_pairs = max_pairs;
     options.quantities.shifts = options.quantities.distances = options.quantities.vectors = true;
 
-    if (tricell::fuzz::too_many_images(box, options.cutoff)) {
+    if (tricell::fuzz::too_many_images(box, options.cutoff, x.size())) {
         return 0; // speed (differential.hpp)
     }
     if (std::getenv("TRICELL_FUZZ_VERBOSE") != nullptr) {

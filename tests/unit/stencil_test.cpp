@@ -95,6 +95,31 @@ TEST(ClosestApproach, MatchesDenseSamplingOfTheBox) {
     }
 }
 
+TEST(ClosestApproach, BoxWithinRadiusAgreesWithTheExactDistance) {
+    std::mt19937_64 rng(12);
+    std::uniform_real_distribution<double> u(-3, 3), extent(0, 1.5), radius(0.1, 6);
+    int near = 0, far = 0;
+    for (int trial = 0; trial < 5000; ++trial) {
+        SCOPED_TRACE(trial);
+        const Eigen::Matrix3d h = tricell::testing::random_box_matrix(rng, 1, 3, 2);
+        const Eigen::Matrix3d gram = h.transpose() * h;
+        const Eigen::Vector3d edges = h.colwise().norm().transpose();
+        const Eigen::Vector3d lower(u(rng), u(rng), u(rng));
+        const Eigen::Vector3d upper =
+            lower + Eigen::Vector3d(extent(rng), extent(rng), extent(rng));
+        const double r = radius(rng);
+        const double exact = std::sqrt(tricell::closest_approach_sq(h, gram, lower, upper));
+        if (std::abs(exact - r) < 1e-9 * r) {
+            continue; // on the boundary either answer is within rounding
+        }
+        const bool within = tricell::box_within_radius(h, gram, edges, lower, upper, r);
+        EXPECT_EQ(within, exact < r) << "closest approach " << exact << ", radius " << r;
+        (within ? near : far) += 1;
+    }
+    EXPECT_GT(near, 500); // both answers are exercised
+    EXPECT_GT(far, 500);
+}
+
 TEST(Stencil, CheapPruningKeepsASupersetOfExactPruning) {
     std::mt19937_64 rng(9);
     for (int trial = 0; trial < 30; ++trial) {
