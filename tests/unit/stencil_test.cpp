@@ -71,12 +71,20 @@ TEST(Stencil, HalfIsExactlyOneOfEachOppositePair) {
 
 TEST(ClosestApproach, MatchesDenseSamplingOfTheBox) {
     std::mt19937_64 rng(11);
-    std::uniform_real_distribution<double> u(-2, 2);
-    for (int trial = 0; trial < 200; ++trial) {
+    std::uniform_real_distribution<double> u(-2, 2), extent(0, 1.5);
+    for (int trial = 0; trial < 600; ++trial) {
         SCOPED_TRACE(trial);
         const Eigen::Matrix3d h = tricell::testing::random_box_matrix(rng, 1, 3, 2);
         Eigen::Vector3d lower(u(rng), u(rng), u(rng));
-        const Eigen::Vector3d upper = lower + Eigen::Vector3d(0.5, 0.7, 0.3);
+        // Fixed extents first, then random ones, flat along an axis one time in ten.
+        Eigen::Vector3d size(0.5, 0.7, 0.3);
+        if (trial >= 200) {
+            size = Eigen::Vector3d(extent(rng), extent(rng), extent(rng));
+            if (trial % 10 == 0) {
+                size[trial % 3] = 0;
+            }
+        }
+        const Eigen::Vector3d upper = lower + size;
         const double exact = tricell::closest_approach_sq(h, lower, upper);
         double sampled = 1e300;
         const int steps = 24;
