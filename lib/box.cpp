@@ -92,8 +92,10 @@ Box::Box(const Eigen::Matrix3d& h, Periodicity pbc) : h_(h), pbc_(pbc) {
         }
     }
     if (n_periodic_ > 0) {
-        const Eigen::MatrixXd b = reduced_.leftCols(n_periodic_);
-        const Eigen::MatrixXd gram_inv = (b.transpose() * b).inverse();
+        // Sizes bounded by 3: no heap allocation (a Box is built on every search call).
+        using Bounded = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 3, 3>;
+        const Bounded b = reduced_.leftCols(n_periodic_);
+        const Bounded gram_inv = (b.transpose() * b).inverse();
         reduced_gram_inv_.topLeftCorner(n_periodic_, n_periodic_) = gram_inv;
     }
 }
@@ -226,8 +228,9 @@ MinimumImage Box::minimum_image(const Cartesian& d) const {
     }
     // Babai rounding in the reduced basis B: coefficients of the projection of d onto span(B).
     const auto b = reduced_.leftCols(k);
-    const Eigen::VectorXd t = reduced_gram_inv_.topLeftCorner(k, k) *
-                              (b.transpose() * static_cast<const Eigen::Vector3d&>(d));
+    const Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3, 1> t =
+        reduced_gram_inv_.topLeftCorner(k, k) *
+        (b.transpose() * static_cast<const Eigen::Vector3d&>(d));
     Eigen::Vector3i rounded = Eigen::Vector3i::Zero();
     for (int l = 0; l < k; ++l) {
         if (!std::isfinite(t[l]) || std::abs(t[l]) > max_fractional) {
