@@ -315,10 +315,11 @@ double positive(FuzzedDataProvider& in) {
 // Whether this input's calls keep a valid thread count above one, chosen by a hash of the input's
 // bytes (so a replay checks the same, and the decoding is untouched): one input in
 // `threaded_every`. On the others such a count becomes 1. A threaded call starts its helper
-// threads, which cost more than the rest of the input, and the threaded list is checked with
+// threads (AddressSanitizer maps state for each) and fills its list through the ordered batches,
+// which together cost more than the rest of the input, and the threaded list is checked with
 // the same rules and against the same oracle on the sampled inputs; the refused counts (-1, 5000)
 // are always passed as drawn.
-constexpr std::uint32_t threaded_every = 4;
+constexpr std::uint32_t threaded_every = 8;
 bool threaded_input = true;
 
 // Whether this input's successful tricell_neighbors calls are searched again through the C++ API
@@ -468,10 +469,11 @@ std::optional<tricell::NeighborOptions> cxx_options(const tricell_neighbor_optio
     return c;
 }
 
-// A C list view as sorted rows, with the oracle's vector (or distance) where it was not stored.
-tricell::fuzz::PairRows to_rows(const tricell_pairs& p, const tricell::Box& box,
-                                const std::vector<Eigen::Vector3d>& x, const char* call) {
-    tricell::fuzz::PairRows out;
+// A C list view as sorted rows in `out` (cleared first), with the oracle's vector (or distance)
+// where it was not stored.
+void to_rows(const tricell_pairs& p, const tricell::Box& box, const std::vector<Eigen::Vector3d>& x,
+             const char* call, tricell::fuzz::PairRows& out) {
+    out.clear();
     out.reserve(p.size);
     for (std::size_t k = 0; k < p.size; ++k) {
         const PairKey key{p.i[k], p.j[k], p.shifts[3 * k], p.shifts[3 * k + 1],
@@ -487,7 +489,20 @@ tricell::fuzz::PairRows to_rows(const tricell_pairs& p, const tricell::Box& box,
                                   p.distances != nullptr ? p.distances[k] : exact.norm(), d});
     }
     tricell::fuzz::sort_rows(out, call);
-    return out;
+}
+
+// The oracle's rows and a list's rows, buffers kept from input to input.
+tricell::fuzz::PairRows expected_rows;
+tricell::fuzz::PairRows found_rows;
+
+// `pairs` against the oracle (see tricell::fuzz::compare).
+template <class CutoffOf>
+void compare_with_oracle(const tricell::Box& box, const std::vector<Eigen::Vector3d>& x,
+                         double largest, const CutoffOf& cutoff_of, bool half,
+                         const tricell_pairs& pairs, const char* call) {
+    tricell::fuzz::oracle_rows(box, x, largest, cutoff_of, half, expected_rows);
+    to_rows(pairs, box, x, call, found_rows);
+    tricell::fuzz::compare(box, x, cutoff_of, expected_rows, found_rows, call);
 }
 
 // The list's view after a failed call: empty.
@@ -650,9 +665,7 @@ void neighbors(FuzzedDataProvider& in, State& state) {
         !tricell::fuzz::oracle_affordable(*cbox, x, largest, max_oracle_work)) {
         return;
     }
-    tricell::fuzz::compare(*cbox, x, cutoff_of,
-                           tricell::fuzz::oracle_rows(*cbox, x, largest, cutoff_of, c.half),
-                           to_rows(pairs, *cbox, x, "tricell_neighbors"), "tricell_neighbors");
+    compare_with_oracle(*cbox, x, largest, cutoff_of, c.half, pairs, "tricell_neighbors");
 }
 
 // Create (or replace) the Verlet handle from fuzzed options.
@@ -754,9 +767,7 @@ void verlet_update(FuzzedDataProvider& in, State& state) {
         return;
     }
     const auto cutoff_of = [&](std::uint32_t, std::uint32_t) { return o.cutoff; };
-    tricell::fuzz::compare(
-        *cbox, x, cutoff_of, tricell::fuzz::oracle_rows(*cbox, x, o.cutoff, cutoff_of, o.half == 1),
-        to_rows(pairs, *cbox, x, "tricell_verlet_update"), "tricell_verlet_update");
+    compare_with_oracle(*cbox, x, o.cutoff, cutoff_of, o.half == 1, pairs, "tricell_verlet_update");
 }
 
 // The calls that take only NULLs: each must fail with a message, touching nothing.

@@ -174,20 +174,20 @@ inline void sort_rows(PairRows& rows, const char* engine) {
     }
 }
 
-/// The oracle's pairs as sorted rows, straight from its loop (which visits them in key order;
-/// a map would take an allocation per pair): d < cutoff_of(i, j) <= `largest`, only the
-/// canonical half when `half`.
+/// The oracle's pairs as sorted rows in `rows` (cleared first; a caller's buffer, reused so
+/// that a large list does not cost a fresh allocation per input), straight from its loop (which
+/// visits them in key order; a map would take an allocation per pair): d < cutoff_of(i, j) <=
+/// `largest`, only the canonical half when `half`.
 template <class CutoffOf>
-PairRows oracle_rows(const Box& box, const std::vector<Eigen::Vector3d>& x, double largest,
-                     const CutoffOf& cutoff_of, bool half) {
-    PairRows rows;
+void oracle_rows(const Box& box, const std::vector<Eigen::Vector3d>& x, double largest,
+                 const CutoffOf& cutoff_of, bool half, PairRows& rows) {
+    rows.clear();
     testing::for_each_brute_force_pair(box, x, largest, cutoff_of,
                                        [&](const PairKey& key, const testing::PairValue& value) {
                                            if (!half || testing::in_canonical_half(key)) {
                                                rows.emplace_back(key, value);
                                            }
                                        });
-    return rows;
 }
 
 /// A stored list (shifts, distances and vectors stored) as sorted rows, in `out`.

@@ -281,9 +281,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const bool have_oracle =
         tricell::fuzz::oracle_affordable(box, x, options.cutoff, max_oracle_work);
     const auto cutoff_of = [&](std::uint32_t, std::uint32_t) { return options.cutoff; };
-    tricell::fuzz::PairRows expected;
+    static tricell::fuzz::PairRows expected;
+    expected.clear();
     if (have_oracle) {
-        expected = tricell::fuzz::oracle_rows(box, x, options.cutoff, cutoff_of, options.half);
+        tricell::fuzz::oracle_rows(box, x, options.cutoff, cutoff_of, options.half, expected);
     }
 
     int rejected = -1; // unknown until the first engine ran
