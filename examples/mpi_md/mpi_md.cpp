@@ -18,6 +18,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <optional>
 #include <string>
 
 #include "mpi_lj.hpp"
@@ -144,10 +145,10 @@ int run(int argc, char** argv) {
     const md_lj::LjSystem system = md_lj::make_fcc(cells, 0.8, 1.0, seed);
     mpi_md::MpiLjSimulation sim(decomposition, system, options);
     const double n = double(system.positions.size());
-    md_lj::LjSimulation* serial = nullptr;
-    md_lj::LjSimulation serial_sim(system, options);
+    // The serial reference exists only where it is compared (rank 0 with --check).
+    std::optional<md_lj::LjSimulation> serial;
     if (check && rank == 0) {
-        serial = &serial_sim;
+        serial.emplace(system, options);
     }
     const auto& dims = decomposition.dims();
     if (rank == 0) {
