@@ -4,8 +4,9 @@
 # 1 rank at 32 000 (strong scaling). As the bound for that ratio, two serial md_lj at once at
 # 32 000 atoms, one pinned to each core: ranks advance in lock step, so two ranks can go at most
 # twice as fast as the slower of two independent copies of the work running side by side (the
-# two cores of a virtual machine need not be equally fast). Needs a quiet machine with at least
-# 2 cores.
+# two cores of a virtual machine need not be equally fast). Besides the medians it prints each
+# round's 2-rank speed-up as a share of that round's bound. Needs a quiet machine with at least 2
+# cores.
 #
 #   benchmarks/mpi_wall.sh [build dir (build)] [runs (5)] [steps (200)]
 set -euo pipefail
@@ -39,3 +40,16 @@ awk -v a="$med_md_lj_4000" -v b="$med_np1_4000" -v c="$med_md_lj_32000" -v d="$m
     printf "1 rank / md_lj step time: 4 000 atoms %.2fx, 32 000 atoms %.2fx\n", a / b, c / d
     printf "2 ranks / 1 rank speed at 32 000 atoms: %.2fx\n", e / d
     printf "two md_lj at once, twice the slower one / one alone (the bound for 2 ranks): %.2fx\n", f / c }'
+# Round by round (the cores' speeds drift between rounds): 2 ranks / 1 rank and its share of the
+# round's bound, and the median share.
+awk -v np1="${got[np1.32000]}" -v np2="${got[np2.32000]}" -v lj="${got[md_lj.32000]}" \
+    -v pair="${got[pair.32000]}" 'BEGIN {
+    n = split(np1, one); split(np2, two); split(lj, serial); split(pair, bound)
+    line = "2 ranks / 1 rank by round (share of the bound):"
+    for (r = 1; r <= n; ++r) {
+        share[r] = (two[r] / one[r]) / (bound[r] / serial[r])
+        line = line sprintf(" %.2fx (%.0f%%)", two[r] / one[r], 100 * share[r])
+    }
+    print line
+    for (r = 1; r <= n; ++r) for (k = r + 1; k <= n; ++k) if (share[k] < share[r]) { t = share[r]; share[r] = share[k]; share[k] = t }
+    printf "median share of the bound: %.0f%%\n", 100 * (n % 2 ? share[(n + 1) / 2] : (share[n / 2] + share[n / 2 + 1]) / 2) }'
