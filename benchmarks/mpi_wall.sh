@@ -42,14 +42,10 @@ awk -v a="$med_md_lj_4000" -v b="$med_np1_4000" -v c="$med_md_lj_32000" -v d="$m
     printf "two md_lj at once, twice the slower one / one alone (the bound for 2 ranks): %.2fx\n", f / c }'
 # Round by round (the cores' speeds drift between rounds): 2 ranks / 1 rank and its share of the
 # round's bound, and the median share.
-awk -v np1="${got[np1.32000]}" -v np2="${got[np2.32000]}" -v lj="${got[md_lj.32000]}" \
+shares=$(awk -v np1="${got[np1.32000]}" -v np2="${got[np2.32000]}" -v lj="${got[md_lj.32000]}" \
     -v pair="${got[pair.32000]}" 'BEGIN {
     n = split(np1, one); split(np2, two); split(lj, serial); split(pair, bound)
-    line = "2 ranks / 1 rank by round (share of the bound):"
-    for (r = 1; r <= n; ++r) {
-        share[r] = (two[r] / one[r]) / (bound[r] / serial[r])
-        line = line sprintf(" %.2fx (%.0f%%)", two[r] / one[r], 100 * share[r])
-    }
-    print line
-    for (r = 1; r <= n; ++r) for (k = r + 1; k <= n; ++k) if (share[k] < share[r]) { t = share[r]; share[r] = share[k]; share[k] = t }
-    printf "median share of the bound: %.0f%%\n", 100 * (n % 2 ? share[(n + 1) / 2] : (share[n / 2] + share[n / 2 + 1]) / 2) }'
+    for (r = 1; r <= n; ++r) printf "%.4f %.4f\n", two[r] / one[r], (two[r] / one[r]) / (bound[r] / serial[r]) }')
+printf '2 ranks / 1 rank by round (share of the bound):%s\n' \
+    "$(awk '{printf " %.2fx (%.0f%%)", $1, 100 * $2}' <<<"$shares")"
+printf 'median share of the bound: %.0f%%\n' "$(cut -d' ' -f2 <<<"$shares" | median | awk '{print 100 * $1}')"
