@@ -8,9 +8,10 @@
 // one rank only, which adds its force to i and the opposite to j's row (a ghost's row when j is
 // a ghost); reverse_sum() then adds every ghost's row into its owner's force, one message per
 // neighbour rank. Each pair force is computed once, as in the serial md_lj. The potential energy
-// is the sum over the half pairs. Integration (velocity Verlet, positions wrapped after every
-// drift) and the potential are md_lj's, so the energies match the serial md_lj::LjSimulation to
-// round-off.
+// is the sum over the half pairs, kept per rank and summed over ranks only when asked (as an MD
+// code's thermodynamic output), so a step's only collectives are the list's. Integration (velocity
+// Verlet, positions wrapped after every drift) and the potential are md_lj's, so the energies match
+// the serial md_lj::LjSimulation to round-off.
 #pragma once
 
 #include <cstddef>
@@ -92,8 +93,9 @@ class MpiLjSimulation {
         }
         return 0.5 * sum(twice);
     }
-    double potential_energy() const { return potential_; }
-    double total_energy() const { return kinetic_energy() + potential_; }
+    /// Collective, as kinetic_energy().
+    double potential_energy() const { return sum(potential_); }
+    double total_energy() const { return kinetic_energy() + potential_energy(); }
     std::size_t builds() const { return list_.rebuild_count(); }
     std::size_t steps() const { return steps_; }
     const tricell::mpi::LocalAtoms& atoms() const { return atoms_; }
@@ -134,7 +136,7 @@ class MpiLjSimulation {
                 atoms_.payload[6 * a + force + c] = forces_[3 * a + c];
             }
         }
-        potential_ = sum(potential);
+        potential_ = potential;
     }
 
     const tricell::mpi::Decomposition& decomposition_;
@@ -143,7 +145,7 @@ class MpiLjSimulation {
     tricell::mpi::DistributedVerletList list_;
     tricell::mpi::LocalAtoms atoms_;
     std::vector<double> forces_;
-    double potential_ = 0;
+    double potential_ = 0; // this rank's share
     std::size_t steps_ = 0;
 };
 

@@ -249,6 +249,11 @@ void Halo::update(const Decomposition& decomposition, const Box& box, PointsView
             }
         }
     });
+    place_owned(box, positions);
+    send_positions(decomposition, box);
+}
+
+void Halo::place_owned(const Box& box, PointsView positions) {
     const Eigen::Matrix3d& hm = box.matrix();
     for (std::size_t a = 0; a < owned_; ++a) {
         const Eigen::Vector3d x = positions[a];
@@ -265,7 +270,6 @@ void Halo::update(const Decomposition& decomposition, const Box& box, PointsView
             images_[3 * a + std::size_t(k)] = std::int32_t(c[k]);
         }
     }
-    send_positions(decomposition, box);
 }
 
 void Halo::send_positions(const Decomposition& decomposition, const Box& box) {

@@ -91,26 +91,27 @@ bool DistributedVerletList::update(const Decomposition& decomposition, const Box
         const MPI_Comm comm = decomposition.comm();
         const Box open = Box::from_columns(box.matrix(), Periodicity::none());
 
-        // Can the build still serve? Every rank must say yes (one MPI_Allreduce with the input
-        // check).
+        // Can the build still serve? Every rank must say yes, in the one MPI_Allreduce of a
+        // step: the input check and the vote of the owned atoms (a ghost moved as its owner
+        // did, whose rank checks it). The ghosts' new positions are sent only when it serves.
         int keep = built_ && atoms.size() == halo_.owned_count() &&
                    box.periodicity() == built_periodicity_;
         detail::agreed(
-            comm, [&] { atoms.validate(); }, &keep);
-        if (keep) {
-            halo_.update(decomposition, box, atoms.points());
-            add_exchange(halo_, traffic_.halo_update);
-            // The owned atoms only: a ghost moved as its owner did, whose rank checks it.
-            detail::agreed(
-                comm,
-                [&] {
+            comm,
+            [&] {
+                atoms.validate();
+                if (keep) {
+                    halo_.place_owned(box, atoms.points());
                     keep = !tracker_.needs_rebuild(
                         open, PointsView(halo_.positions().data(), halo_.owned_count()),
                         options_.skin, options_.neighbors.cutoff);
-                },
-                &keep);
-        }
-        if (!keep) {
+                }
+            },
+            &keep);
+        if (keep) {
+            halo_.send_positions(decomposition, box);
+            add_exchange(halo_, traffic_.halo_update);
+        } else {
             built_ = false;
             // Among the last halo's neighbour ranks when every atom's owner is one of them (an atom
             // moves less than the halo reach in a Verlet interval), else MPI_Alltoall.

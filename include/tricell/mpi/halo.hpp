@@ -142,6 +142,12 @@ class TRICELL_MPI_API Halo {
         std::uint32_t atom;
         std::int32_t t[3];
     };
+    // update() is the collective check, then place_owned() and send_positions(); the
+    // distributed Verlet list takes its own check and rebuild vote in one MPI_Allreduce, so it
+    // calls the two parts itself.
+    friend class DistributedVerletList;
+    // y and c of the owned atoms from their new caller positions (checked already; no MPI).
+    void place_owned(const Box& box, PointsView positions);
     // The build's exchange of ghost records (and their slots), and update()'s of positions.
     void exchange(const Decomposition& decomposition, const Box& box);
     void send_positions(const Decomposition& decomposition, const Box& box);

@@ -4,12 +4,13 @@
 // r_l = r_c + skin of each domain (for a half list the upper ones, halo.hpp) and searches the
 // candidates of the owned atoms among the owned and ghost atoms in the local frame (halo.hpp;
 // "Candidates" below). Between builds atoms stay with the rank that owned them at the build, even
-// when they drift out of its domain. Each update() first refreshes the ghosts from their owners
-// (Halo::update: same ghosts, new positions), then every rank applies the serial list's rebuild
-// rule (tricell/displacement.hpp: skin / 2 in a fixed box, less when the box deforms) to its owned
-// atoms, and one MPI_Allreduce (joined with the input check) decides for everybody: if any atom
-// anywhere moved past the budget, every rank rebuilds (migration, halo, candidates); otherwise
-// every rank only filters its candidates. A rebuild's migration goes to the halo's neighbour ranks
+// when they drift out of its domain. In each update() every rank applies the serial list's
+// rebuild rule (tricell/displacement.hpp: skin / 2 in a fixed box, less when the box deforms) to
+// its owned atoms, and one MPI_Allreduce (joined with the input check; the update's only
+// collective) decides for everybody: if any atom anywhere moved past the budget, every rank
+// rebuilds (migration, halo, candidates); otherwise the ghosts are refreshed from their owners
+// (as Halo::update: same ghosts, new positions) and every rank only filters its candidates. A
+// rebuild's migration goes to the halo's neighbour ranks
 // only when every atom's new owner is one of them (the usual case), else through the MPI_Alltoall
 // of migrate().
 //
