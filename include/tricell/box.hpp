@@ -121,8 +121,10 @@ class TRICELL_API Box {
 };
 
 inline WrappedFractional Box::wrap(const Fractional& s) const {
-    WrappedFractional out;
-    out.wrapped = s;
+    // Built in locals and stored once: stored component by component, the result would be read
+    // back as a vector before the stores retire (a store-forwarding stall per atom).
+    double wrapped[3] = {s[0], s[1], s[2]};
+    int images[3] = {0, 0, 0};
     for (int axis = 0; axis < 3; ++axis) {
         // Finite, and within max_fractional on a periodic axis (a NaN fails the comparison).
         const double limit = pbc_[axis] ? max_fractional : std::numeric_limits<double>::max();
@@ -142,9 +144,12 @@ inline WrappedFractional Box::wrap(const Fractional& s) const {
             w = 0.0;
             image += 1.0;
         }
-        out.wrapped[axis] = w + 0.0; // + 0.0 turns -0.0 into +0.0
-        out.image[axis] = static_cast<int>(image);
+        wrapped[axis] = w + 0.0; // + 0.0 turns -0.0 into +0.0
+        images[axis] = static_cast<int>(image);
     }
+    WrappedFractional out;
+    out.wrapped = Fractional(wrapped[0], wrapped[1], wrapped[2]);
+    out.image = Shift(images[0], images[1], images[2]);
     return out;
 }
 
