@@ -1,12 +1,12 @@
 // mpi_md: the md_lj Lennard-Jones NVE dynamics (FCC melting at T = 1, rho = 0.8, tilted box)
 // over MPI ranks with tricell::mpi (domain decomposition, halo exchange, distributed Verlet
-// list). Prints the energies per atom as it goes (ten times a run), the list builds, the speed
-// (wall time of the whole loop, the slowest rank's) and the halo (ghost fraction and neighbour
-// ranks per rank). With --check, rank 0 also runs the serial md_lj simulation and the energies
-// are compared at every step, and it prints the largest difference (exit status 1 above 1e-8
-// per atom); the speed then includes the serial steps.
-// With --traffic, rank 0 prints the messages and bytes each rank sent per exchange, as counted by
-// the library (DistributedVerletList::traffic(), means over ranks), beside the model of
+// list). Prints the energies per atom as it goes (at step 0 and every tenth of the run), the list
+// builds, the speed (wall time of the whole loop, the slowest rank's) and the halo (ghost fraction
+// and neighbour ranks per rank). With --check, rank 0 also runs the serial md_lj simulation and the
+// energies are compared at every step, and it prints the largest difference (exit status 1 above
+// 1e-8 per atom); the speed then includes the serial steps. With --traffic, rank 0 prints the
+// messages and bytes each rank sent per exchange, as counted by the library
+// (DistributedVerletList::traffic(), means over ranks), beside the model of
 // tricell/mpi/traffic.hpp.
 //
 //   mpirun -np K mpi_md [--steps 200] [--atoms 864 | --atoms-per-rank N] [--skin 0.3]

@@ -26,10 +26,10 @@
 // DistributedVerletList::traffic() counts what each rank sent, by kind. In a triclinic box the
 // fractional halo box is larger than the Cartesian shell (more ghosts, the same pairs). Exchanges
 // are direct to every rank in the halo (no staged forwarding along axes), which is what keeps a
-// halo several domains deep exact, at the price of M messages instead of 6. Per Verlet step: one
-// halo update (M messages), three small MPI_Allreduce (input check with the keep-the-build vote,
-// the halo's input check, the displacement vote of the owned atoms), each O(log P), and, with
-// Newton's third law, one reverse_sum (M messages). Per rebuild additionally: a migration among the
+// halo several domains deep exact, at the price of M messages instead of 6. Per Verlet step that
+// keeps the list: one small MPI_Allreduce (the input check with the displacement vote of the
+// owned atoms), O(log P), one halo update (M messages) and, with Newton's third law, one
+// reverse_sum (M messages). Per rebuild additionally: a migration among the
 // halo's neighbour ranks (one MPI_Allreduce vote, then M messages) whenever every atom's new owner
 // is one of them, the usual case after one Verlet interval, else the fallback of one MPI_Alltoall
 // of counts (O(P) per rank, about 40 kB at P = 10^4) and an MPI_Alltoallv; a halo build (M

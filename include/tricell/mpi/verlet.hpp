@@ -6,13 +6,12 @@
 // "Candidates" below). Between builds atoms stay with the rank that owned them at the build, even
 // when they drift out of its domain. In each update() every rank applies the serial list's
 // rebuild rule (tricell/displacement.hpp: skin / 2 in a fixed box, less when the box deforms) to
-// its owned atoms, and one MPI_Allreduce (joined with the input check; the update's only
+// its owned atoms, and one MPI_Allreduce (joined with the input check; a kept update's only
 // collective) decides for everybody: if any atom anywhere moved past the budget, every rank
 // rebuilds (migration, halo, candidates); otherwise the ghosts are refreshed from their owners
 // (as Halo::update: same ghosts, new positions) and every rank only filters its candidates. A
-// rebuild's migration goes to the halo's neighbour ranks
-// only when every atom's new owner is one of them (the usual case), else through the MPI_Alltoall
-// of migrate().
+// rebuild's migration goes to the halo's neighbour ranks only when every atom's new owner is one
+// of them (the usual case), else through the MPI_Alltoall of migrate().
 //
 // Why the ghosts need no reselection between builds: at the build every owned atom i was inside
 // its domain and every image of j within r_l of it was a ghost (for a half list, every image
