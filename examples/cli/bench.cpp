@@ -60,20 +60,22 @@ double peak_rss_mb() {
 std::string bench_help() {
     std::vector<std::string> backends = backend_names();
     backends.front() += " (default)";
-    return R"(usage: tricell bench FILE --cutoff R [--half] [--quantities ijSdD] [--repeat K]
-                     [--threads T] [--backend B] [--max-pairs N] [--max-bytes N]
-                     [--input-format cif|xyz|poscar]
+    return R"(usage: tricell bench FILE --cutoff R [--half] [--grouped | --sorted]
+                     [--quantities ijSdD] [--repeat K] [--threads T] [--backend B]
+                     [--max-pairs N] [--max-bytes N] [--input-format cif|xyz|poscar]
        tricell bench --list-backends
 
 Times tricell's neighbour list of FILE: one warm-up call, then K timed calls (default 10) into
-a reused list. Prints pairs, median_s, min_s, pairs_per_s, list_mb (the stored arrays),
-base_rss_mb (resident memory after reading FILE, before any search), peak_rss_mb (peak
-resident memory of the whole process), the backend that ran and the cells it stored, one
-"key value" per line.
+a reused list. Prints pairs, median_s, min_s, pairs_per_s, list_bytes and list_mb (the stored
+arrays, offsets included), base_rss_mb (resident memory after reading FILE, before any
+search), peak_rss_mb (peak resident memory of the whole process), the backend that ran and
+the cells it stored, one "key value" per line.
 
 Options:
   --cutoff R          cutoff, R > 0 (required)
   --half              half list (each pair once)
+  --grouped           pairs grouped by i with per-atom offsets, in the search's order
+  --sorted            pairs sorted by i, then j, then S, with per-atom offsets
   --quantities Q      what to store besides i and j: any of S (shifts), d (distances),
                       D (vectors); default "ijSd"
   --repeat K          timed calls, K >= 1 (default 10)
@@ -110,6 +112,10 @@ int run_bench(Arguments& arguments) {
             have_cutoff = true;
         } else if (arguments.flag("--half")) {
             options.half = true;
+        } else if (arguments.flag("--grouped")) {
+            options.grouped = true;
+        } else if (arguments.flag("--sorted")) {
+            options.sorted = true;
         } else if (arguments.option("--quantities")) {
             const std::string& q = arguments.value();
             if (q.find_first_not_of("ijSdD") != std::string::npos) {
@@ -156,16 +162,19 @@ int run_bench(Arguments& arguments) {
     const double list_bytes =
         double(list.i().size() + list.j().size()) * sizeof(std::uint32_t) +
         double(list.shifts().size()) * sizeof(std::int32_t) +
-        double(list.distances().size() + list.vectors().size()) * sizeof(double);
+        double(list.distances().size() + list.vectors().size()) * sizeof(double) +
+        double(list.offsets().size()) * sizeof(std::size_t);
     std::printf("file %s\n", file.c_str());
     std::printf("atoms %zu\n", structure.size());
     std::printf("cutoff %s\n", brief(options.cutoff).c_str());
     std::printf("half %d\n", options.half ? 1 : 0);
+    std::printf("order %s\n", options.sorted ? "sorted" : options.grouped ? "grouped" : "search");
     std::printf("threads %d\n", options.threads);
     std::printf("pairs %zu\n", list.size());
     std::printf("median_s %.6g\n", median);
     std::printf("min_s %.6g\n", seconds.front());
     std::printf("pairs_per_s %.6g\n", double(list.size()) / median);
+    std::printf("list_bytes %.0f\n", list_bytes);
     std::printf("list_mb %.3f\n", list_bytes / (1024.0 * 1024.0));
     std::printf("base_rss_mb %.3f\n", base_rss);
     std::printf("peak_rss_mb %.3f\n", peak_rss_mb());

@@ -605,6 +605,30 @@ TEST_F(Cli, MaxPairsRefusesLargerSearchesWithStatus1) {
     }
 }
 
+// bench times the list in the order asked for: the same pairs in every order, and the offsets
+// (one per atom and one more) counted in the stored arrays of grouped and sorted output.
+TEST_F(Cli, BenchReportsTheOrderAndCountsTheOffsets) {
+    auto value = [](const std::string& out, const std::string& key) {
+        const std::size_t at = out.find("\n" + key + " ");
+        EXPECT_NE(at, std::string::npos) << key << " in " << out;
+        const std::size_t start = at + key.size() + 2;
+        return out.substr(start, out.find('\n', start) - start);
+    };
+    const Result search = run("bench quartz.cif --cutoff 3 --repeat 1");
+    ASSERT_EQ(search.status, 0) << search.err;
+    EXPECT_EQ(value(search.out, "order"), "search");
+    for (const std::string order : {"grouped", "sorted"}) {
+        SCOPED_TRACE(order);
+        const Result r = run("bench quartz.cif --cutoff 3 --repeat 1 --" + order);
+        ASSERT_EQ(r.status, 0) << r.err;
+        EXPECT_EQ(value(r.out, "order"), order);
+        EXPECT_EQ(value(r.out, "pairs"), value(search.out, "pairs"));
+        EXPECT_EQ(std::stol(value(r.out, "list_bytes")) -
+                      std::stol(value(search.out, "list_bytes")),
+                  (std::stol(value(r.out, "atoms")) + 1) * long(sizeof(std::size_t)));
+    }
+}
+
 TEST_F(Cli, NoArgumentsPrintsUsageAndExits2) {
     const Result r = run("");
     EXPECT_EQ(r.status, 2);
