@@ -1,6 +1,9 @@
 #include "search/output_order.hpp"
 
+#include "detail/stream_copy.hpp"
+
 #include <algorithm>
+#include <cstdint>
 #include <numeric>
 #include <vector>
 
@@ -47,33 +50,33 @@ template <class T> void copy_run(const T* from, std::size_t n, T* to) {
     }
 }
 
-// Copies each run [runs[r], runs[r + 1]) of column `from` (width values per pair) to the place
-// its atom's cursor gives in `to`, advancing the cursor: a counting sort that moves runs, not
-// pairs. Then `from` holds the result and `to` is empty and holds no memory: the old column is
-// freed before the next column is scattered, so the grouping needs room for one column more than
-// the list, never a second list (docs/memory.md).
+// Copies each run [runs[r], runs[r + 1]) of `column` (width values per pair) to the place its
+// atom's cursor gives in `spare`, advancing the cursor: a counting sort that moves runs, not
+// pairs. Then the grouped column is copied back over `column` in one sequential pass. Both
+// buffers are reused from call to call, so a grouped list in a loop writes into resident memory
+// instead of asking the kernel for fresh (zeroed) pages each time; the grouping needs room for
+// one column more than the list, never a second list (docs/memory.md).
 template <class T>
-void scatter_runs(PairArray<T>& from, PairArray<T>& to, const std::vector<std::size_t>& runs,
-                  const PairArray<std::uint32_t>& is, std::vector<std::size_t> cursor,
-                  std::size_t width) {
-    if (from.empty()) {
+void scatter_runs(PairArray<T>& column, PairArray<double>& spare,
+                  const std::vector<std::size_t>& runs, const PairArray<std::uint32_t>& is,
+                  std::vector<std::size_t> cursor, std::size_t width) {
+    if (column.empty()) {
         return;
     }
-    to.resize(from.size());
+    T* to = reinterpret_cast<T*>(spare.data());
     for (std::size_t r = 0; r + 1 < runs.size(); ++r) {
         const std::size_t begin = runs[r];
         const std::size_t length = runs[r + 1] - begin;
         std::size_t& at = cursor[is[begin]];
-        copy_run(from.data() + width * begin, width * length, to.data() + width * at);
+        copy_run(column.data() + width * begin, width * length, to + width * at);
         at += length;
     }
-    from.swap(to);
-    PairArray<T>().swap(to); // frees the old column
+    stream_copy(column.data(), to, column.size() * sizeof(T));
 }
 
 } // namespace
 
-void group_pairs(PairColumns& columns, std::size_t atoms, PairColumns& spare) {
+void group_pairs(PairColumns& columns, std::size_t atoms, PairArray<double>& spare) {
     count_offsets(columns, atoms);
     // The search meets each atom's pairs in runs (a cell's atoms against one stencil row at a
     // time), several pairs long: the runs move whole, and i is written from the offsets.
@@ -95,10 +98,15 @@ void group_pairs(PairColumns& columns, std::size_t atoms, PairColumns& spare) {
     }
     runs.push_back(is.size());
     const std::vector<std::size_t> cursor(columns.offsets.begin(), columns.offsets.end() - 1);
-    scatter_runs(columns.j, spare.j, runs, is, cursor, 1);
-    scatter_runs(columns.shifts, spare.shifts, runs, is, cursor, 3);
-    scatter_runs(columns.distances, spare.distances, runs, is, cursor, 1);
-    scatter_runs(columns.vectors, spare.vectors, runs, is, cursor, 3);
+    const std::size_t widest = std::max(
+        {columns.j.size() * sizeof(std::uint32_t), columns.shifts.size() * sizeof(std::int32_t),
+         columns.distances.size() * sizeof(double), columns.vectors.size() * sizeof(double)});
+    spare.clear(); // no copy of old contents when it grows
+    spare.resize((widest + sizeof(double) - 1) / sizeof(double));
+    scatter_runs(columns.j, spare, runs, is, cursor, 1);
+    scatter_runs(columns.shifts, spare, runs, is, cursor, 3);
+    scatter_runs(columns.distances, spare, runs, is, cursor, 1);
+    scatter_runs(columns.vectors, spare, runs, is, cursor, 3);
     for (std::size_t a = 0; a < atoms; ++a) {
         std::fill(columns.i.begin() + std::ptrdiff_t(columns.offsets[a]),
                   columns.i.begin() + std::ptrdiff_t(columns.offsets[a + 1]), std::uint32_t(a));

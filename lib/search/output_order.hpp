@@ -13,8 +13,8 @@
 namespace tricell::detail {
 
 /// Groups `columns` by i (stable) and fills its offsets for `atoms` atoms. `spare` is scratch
-/// memory kept between calls (its columns' contents are overwritten).
-void group_pairs(PairColumns& columns, std::size_t atoms, PairColumns& spare);
+/// memory kept between calls, grown to the widest column (its contents are overwritten).
+void group_pairs(PairColumns& columns, std::size_t atoms, PairArray<double>& spare);
 
 /// Sorts `columns` (S needed) by i, j, S and fills its offsets for `atoms` atoms.
 void sort_pairs(PairColumns& columns, std::size_t atoms);

@@ -479,8 +479,10 @@ TYPED_TEST(NeighborProperty, OutputIdenticalForAnyThreadCount_RandomCases) {
 
 // grouped: the unordered list stably grouped by i (checked against a stable sort of it by i),
 // with per-atom offsets equal to the sorted list's; with any thread count, and without stored
-// shifts too.
+// shifts too. One list object is reused over all the cases, as a caller in a loop does (the
+// grouping keeps its scratch in it), and must equal a fresh list each time.
 TYPED_TEST(NeighborProperty, GroupedListIsTheUnorderedListStablyGroupedByI_RandomCases) {
+    NeighborList reused;
     for (std::uint64_t seed = 2; seed < case_count; seed += 3) {
         const RandomSystem sys = tricell::testing::random_system(seed);
         if (this->skip(sys)) {
@@ -493,6 +495,13 @@ TYPED_TEST(NeighborProperty, GroupedListIsTheUnorderedListStablyGroupedByI_Rando
         const NeighborList plain = tricell::compute_neighbors(sys.box(), sys.positions, o);
         o.grouped = true;
         const NeighborList grouped = tricell::compute_neighbors(sys.box(), sys.positions, o);
+        tricell::compute_neighbors(sys.box(), sys.positions, o, reused);
+        ASSERT_EQ(reused.i(), grouped.i());
+        ASSERT_EQ(reused.j(), grouped.j());
+        ASSERT_EQ(reused.shifts(), grouped.shifts());
+        ASSERT_EQ(reused.distances(), grouped.distances());
+        ASSERT_EQ(reused.vectors(), grouped.vectors());
+        ASSERT_EQ(reused.offsets(), grouped.offsets());
         o.grouped = false;
         o.sorted = true;
         const NeighborList sorted = tricell::compute_neighbors(sys.box(), sys.positions, o);
