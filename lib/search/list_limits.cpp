@@ -58,7 +58,7 @@ ListMemory list_memory(const NeighborOptions& options) {
         m.per_atom = 16;                 // the offsets, a cursor
         m.order = "sort";
     } else if (options.grouped) {
-        m.order_per_pair = m.widest + 8; // one column being scattered, the runs
+        m.order_per_pair = m.widest; // one column being scattered
         m.per_atom = 16;
         m.order = "group";
     }

@@ -2,10 +2,9 @@
 //
 // A list's columns cost a fixed number of bytes per pair (i and j 8, S 12, d 8, D 24). Besides
 // the list, a column that grows (a list past its estimate) holds its old and its new copy for
-// the time of the copy; grouping scatters one column at a time (the widest one extra) and keeps
-// 8 bytes per run of one atom's pairs (at most one run per pair, counted so); sorting holds an
-// 8-byte permutation and one column extra; both write 8-byte offsets and cursors per atom. The
-// peak of a list is its columns plus the working space of its order. NeighborOptions::max_bytes
+// the time of the copy; grouping scatters one column at a time (the widest one extra); sorting
+// holds an 8-byte permutation and one column extra; both write 8-byte offsets and cursors per atom.
+// The peak of a list is its columns plus the working space of its order. NeighborOptions::max_bytes
 // bounds that peak, NeighborOptions::max_pairs the pairs: ListLimits turns both into pair
 // counts for the stores, and refuses an estimate or a list past either with a PairLimitError
 // that names the pairs, their bytes and the limit. (Exported for its test and the memory

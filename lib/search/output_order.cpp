@@ -50,26 +50,32 @@ template <class T> void copy_run(const T* from, std::size_t n, T* to) {
     }
 }
 
-// Copies each run [runs[r], runs[r + 1]) of `column` (width values per pair) to the place its
-// atom's cursor gives in `spare`, advancing the cursor: a counting sort that moves runs, not
-// pairs. Then the grouped column is copied back over `column` in one sequential pass. Both
-// buffers are reused from call to call, so a grouped list in a loop writes into resident memory
-// instead of asking the kernel for fresh (zeroed) pages each time; the grouping needs room for
-// one column more than the list, never a second list (docs/memory.md).
+// Copies each run of consecutive pairs of one atom in `column` (width values per pair) to the
+// place its atom's cursor gives in `spare`, advancing the cursor: a counting sort that moves
+// runs, not pairs (the runs are found again from `is` for each column, which costs less than
+// storing them). Then the grouped column is copied back over `column` in one sequential pass.
+// Both buffers are reused from call to call, so a grouped list in a loop writes into resident
+// memory instead of asking the kernel for fresh (zeroed) pages each time; the grouping needs
+// room for one column more than the list, never a second list (docs/memory.md).
 template <class T>
 void scatter_runs(PairArray<T>& column, PairArray<double>& spare,
-                  const std::vector<std::size_t>& runs, const PairArray<std::uint32_t>& is,
-                  std::vector<std::size_t> cursor, std::size_t width) {
+                  const PairArray<std::uint32_t>& is, std::vector<std::size_t> cursor,
+                  std::size_t width) {
     if (column.empty()) {
         return;
     }
     T* to = reinterpret_cast<T*>(spare.data());
-    for (std::size_t r = 0; r + 1 < runs.size(); ++r) {
-        const std::size_t begin = runs[r];
-        const std::size_t length = runs[r + 1] - begin;
-        std::size_t& at = cursor[is[begin]];
-        copy_run(column.data() + width * begin, width * length, to + width * at);
-        at += length;
+    const std::size_t n = is.size();
+    for (std::size_t begin = 0; begin < n;) {
+        const std::uint32_t atom = is[begin];
+        std::size_t end = begin + 1;
+        while (end < n && is[end] == atom) {
+            ++end;
+        }
+        std::size_t& at = cursor[atom];
+        copy_run(column.data() + width * begin, width * (end - begin), to + width * at);
+        at += end - begin;
+        begin = end;
     }
     stream_copy(column.data(), to, column.size() * sizeof(T));
 }
@@ -81,32 +87,19 @@ void group_pairs(PairColumns& columns, std::size_t atoms, PairArray<double>& spa
     // The search meets each atom's pairs in runs (a cell's atoms against one stencil row at a
     // time), several pairs long: the runs move whole, and i is written from the offsets.
     const PairArray<std::uint32_t>& is = columns.i;
-    // Counted first, so that the runs take 8 bytes each and no growth copy (docs/memory.md).
-    std::size_t run_count = 0;
-    for (std::size_t k = 0; k < is.size(); ++k) {
-        run_count += k == 0 || is[k] != is[k - 1] ? 1 : 0;
-    }
-    std::vector<std::size_t> runs;
-    runs.reserve(run_count + 1);
-    for (std::size_t k = 0; k < is.size(); ++k) {
-        if (k == 0 || is[k] != is[k - 1]) {
-            runs.push_back(k);
-        }
-    }
-    if (runs.size() <= atoms && std::is_sorted(is.begin(), is.end())) {
+    if (std::is_sorted(is.begin(), is.end())) {
         return; // already grouped (a few atoms, or a search that met the atoms in order)
     }
-    runs.push_back(is.size());
     const std::vector<std::size_t> cursor(columns.offsets.begin(), columns.offsets.end() - 1);
     const std::size_t widest = std::max(
         {columns.j.size() * sizeof(std::uint32_t), columns.shifts.size() * sizeof(std::int32_t),
          columns.distances.size() * sizeof(double), columns.vectors.size() * sizeof(double)});
     spare.clear(); // no copy of old contents when it grows
     spare.resize((widest + sizeof(double) - 1) / sizeof(double));
-    scatter_runs(columns.j, spare, runs, is, cursor, 1);
-    scatter_runs(columns.shifts, spare, runs, is, cursor, 3);
-    scatter_runs(columns.distances, spare, runs, is, cursor, 1);
-    scatter_runs(columns.vectors, spare, runs, is, cursor, 3);
+    scatter_runs(columns.j, spare, is, cursor, 1);
+    scatter_runs(columns.shifts, spare, is, cursor, 3);
+    scatter_runs(columns.distances, spare, is, cursor, 1);
+    scatter_runs(columns.vectors, spare, is, cursor, 3);
     for (std::size_t a = 0; a < atoms; ++a) {
         std::fill(columns.i.begin() + std::ptrdiff_t(columns.offsets[a]),
                   columns.i.begin() + std::ptrdiff_t(columns.offsets[a + 1]), std::uint32_t(a));
