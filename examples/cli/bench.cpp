@@ -66,10 +66,10 @@ std::string bench_help() {
        tricell bench --list-backends
 
 Times tricell's neighbour list of FILE: one warm-up call, then K timed calls (default 10) into
-a reused list. Prints pairs, median_s, min_s, pairs_per_s, list_bytes and list_mb (the stored
-arrays, offsets included), base_rss_mb (resident memory after reading FILE, before any
-search), peak_rss_mb (peak resident memory of the whole process), the backend that ran and
-the cells it stored, one "key value" per line.
+a reused list. Prints the order (search, grouped or sorted), pairs, median_s, min_s,
+pairs_per_s, list_bytes and list_mb (the stored arrays, offsets included), base_rss_mb
+(resident memory after reading FILE, before any search), peak_rss_mb (peak resident memory of
+the whole process), the backend that ran and the cells it stored, one "key value" per line.
 
 Options:
   --cutoff R          cutoff, R > 0 (required)
@@ -143,6 +143,9 @@ int run_bench(Arguments& arguments) {
     require_file(arguments, file);
     if (!have_cutoff) {
         arguments.fail("missing --cutoff R");
+    }
+    if (options.grouped && options.sorted) {
+        arguments.fail("--grouped and --sorted exclude each other (sorted output is grouped too)");
     }
     options.validate();
 

@@ -188,10 +188,15 @@ class TRICELL_API NeighborList {
     /// Per-thread batch columns that a threaded compute() keeps here between calls, so that
     /// their memory is reused instead of being faulted in again. Not part of the list.
     std::vector<PairColumns>& thread_columns() { return thread_columns_; }
+    /// The raw scratch column a grouped compute() regroups each column through, kept here
+    /// between calls (empty between them, its capacity kept) for the same reason. Not part of
+    /// the list.
+    PairArray<unsigned char>& order_scratch() { return order_scratch_; }
 
   private:
     PairColumns columns_;
     std::vector<PairColumns> thread_columns_;
+    PairArray<unsigned char> order_scratch_;
 };
 
 /// A block of pairs handed to for_each_pair()'s visitor: `count` pairs, struct-of-arrays.

@@ -58,7 +58,7 @@ template <class T> void copy_run(const T* from, std::size_t n, T* to) {
 // memory instead of asking the kernel for fresh (zeroed) pages each time; the grouping needs
 // room for one column more than the list, never a second list (docs/memory.md).
 template <class T>
-void scatter_runs(PairArray<T>& column, PairArray<double>& spare,
+void scatter_runs(PairArray<T>& column, PairArray<unsigned char>& spare,
                   const PairArray<std::uint32_t>& is, std::vector<std::size_t> cursor,
                   std::size_t width) {
     if (column.empty()) {
@@ -82,7 +82,7 @@ void scatter_runs(PairArray<T>& column, PairArray<double>& spare,
 
 } // namespace
 
-void group_pairs(PairColumns& columns, std::size_t atoms, PairArray<double>& spare) {
+void group_pairs(PairColumns& columns, std::size_t atoms, PairArray<unsigned char>& spare) {
     count_offsets(columns, atoms);
     // The search meets each atom's pairs in runs (a cell's atoms against one stencil row at a
     // time), several pairs long: the runs move whole, and i is written from the offsets.
@@ -95,11 +95,12 @@ void group_pairs(PairColumns& columns, std::size_t atoms, PairArray<double>& spa
         {columns.j.size() * sizeof(std::uint32_t), columns.shifts.size() * sizeof(std::int32_t),
          columns.distances.size() * sizeof(double), columns.vectors.size() * sizeof(double)});
     spare.clear(); // no copy of old contents when it grows
-    spare.resize((widest + sizeof(double) - 1) / sizeof(double));
+    spare.resize(widest);
     scatter_runs(columns.j, spare, is, cursor, 1);
     scatter_runs(columns.shifts, spare, is, cursor, 3);
     scatter_runs(columns.distances, spare, is, cursor, 1);
     scatter_runs(columns.vectors, spare, is, cursor, 3);
+    spare.clear(); // the capacity stays for the next call; a copy of the list copies nothing
     for (std::size_t a = 0; a < atoms; ++a) {
         std::fill(columns.i.begin() + std::ptrdiff_t(columns.offsets[a]),
                   columns.i.begin() + std::ptrdiff_t(columns.offsets[a + 1]), std::uint32_t(a));

@@ -13,9 +13,9 @@
 
 namespace tricell::detail {
 
-/// Groups `columns` by i (stable) and fills its offsets for `atoms` atoms. `spare` is scratch
-/// memory kept between calls, grown to the widest column (its contents are overwritten).
-void group_pairs(PairColumns& columns, std::size_t atoms, PairArray<double>& spare);
+/// Groups `columns` by i (stable) and fills its offsets for `atoms` atoms. `spare` is raw
+/// scratch memory kept between calls: grown to the widest column, left empty with its capacity.
+void group_pairs(PairColumns& columns, std::size_t atoms, PairArray<unsigned char>& spare);
 
 /// Sorts `columns` (S needed) by i, j, S and fills its offsets for `atoms` atoms.
 void sort_pairs(PairColumns& columns, std::size_t atoms);

@@ -179,13 +179,7 @@ void NeighborSearch::compute(NeighborList& out) const {
         if (s.options.sorted) {
             detail::sort_pairs(columns, s.atom_count);
         } else if (s.options.grouped) {
-            // The grouping's scratch column: the first batch's distances, which a threaded
-            // search has copied into `columns` by now; kept between calls with the list.
-            std::vector<PairColumns>& scratch = out.thread_columns();
-            if (scratch.empty()) {
-                scratch.emplace_back();
-            }
-            detail::group_pairs(columns, s.atom_count, scratch.front().distances);
+            detail::group_pairs(columns, s.atom_count, out.order_scratch());
         }
         if (!q.shifts) {
             columns.shifts.clear();

@@ -627,6 +627,10 @@ TEST_F(Cli, BenchReportsTheOrderAndCountsTheOffsets) {
                       std::stol(value(search.out, "list_bytes")),
                   (std::stol(value(r.out, "atoms")) + 1) * long(sizeof(std::size_t)));
     }
+    const Result both = run("bench quartz.cif --cutoff 3 --grouped --sorted");
+    EXPECT_EQ(both.status, 2);
+    EXPECT_NE(both.err.find("--grouped and --sorted exclude each other"), std::string::npos)
+        << both.err;
 }
 
 TEST_F(Cli, NoArgumentsPrintsUsageAndExits2) {
