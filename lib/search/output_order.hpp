@@ -2,9 +2,8 @@
 // stable, so each atom's pairs keep the order the search found them in; it is one counting sort
 // on i (a histogram, a prefix sum, then each column scattered into one scratch column and copied
 // back) that moves runs of consecutive pairs of one atom whole, since the search meets an atom's
-// pairs several at a time. Sorted: by i,
-// then j, then S lexicographically; the counting sort on i followed by a comparison sort of each
-// atom's own pairs by (j, S), which are few.
+// pairs several at a time. Sorted: by i, then j, then S lexicographically; the counting sort on i
+// followed by a comparison sort of each atom's own pairs by (j, S), which are few.
 #pragma once
 
 #include <cstddef>
