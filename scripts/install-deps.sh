@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs the Debian packages tricell needs for building, testing, the command line, the
-# fixtures and the benchmarks. Idempotent: installs only what is missing, and runs
+# fixtures, the benchmarks and the documentation site. Idempotent: installs only what is missing, and runs
 # `apt-get update` once, only when something is missing. Nothing is downloaded at build time.
 set -euo pipefail
 
@@ -21,6 +21,9 @@ packages=(
     clang-14 libclang-rt-14-dev   # libFuzzer harnesses
     libcairo2-dev              # plots (SVG and PNG)
     libfontconfig-dev          # plots: emptying its caches before exit (LeakSanitizer)
+    python3-sphinx python3-myst-parser python3-breathe python3-sphinx-rtd-theme doxygen
+                               # the documentation site (docs/CMakeLists.txt)
+    chromium python3-websocket # the site read in headless Chromium (tests/docs/site_test.py)
 )
 
 missing=()

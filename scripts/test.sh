@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The whole test suite, from a fresh clone: installs what is missing, builds tricell twice
 # (optimised, and with AddressSanitizer + UndefinedBehaviorSanitizer), runs every test in
-# both, and checks formatting; builds and runs the threading tests with ThreadSanitizer
+# both (the optimised build's also build the documentation site, build/docs/html, and read it
+# in headless Chromium: tests/docs), and checks formatting; builds and runs the threading tests with ThreadSanitizer
 # (build-tsan/); then builds the libFuzzer harnesses with clang-14 (build-fuzz/),
 # replays their corpora and fuzzes each for a bounded time (tests/fuzz/README.md). Exit status
 # non-zero if anything fails.
