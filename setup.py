@@ -46,6 +46,7 @@ class CMakeBuild(build_ext):
                         f"-DTRICELL_PYTHON_INSTALL_DIR={package_parent}",
                         "-DTRICELL_BUILD_PYTHON=ON", "-DTRICELL_BUILD_IO=ON", "-DBUILD_SHARED_LIBS=OFF",
                         "-DTRICELL_BUILD_TESTS=OFF", "-DTRICELL_BUILD_EXAMPLES=OFF",
+                        "-DTRICELL_BUILD_CLI=OFF",
                         "-DTRICELL_BUILD_BENCHMARKS=OFF", "-DTRICELL_BUILD_MPI=OFF",
                         "-DTRICELL_BUILD_FORTRAN=OFF", "-DTRICELL_INSTALL=OFF"],
                        check=True)

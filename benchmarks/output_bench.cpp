@@ -1,4 +1,4 @@
-// Rate of `tricell neighbors` text output: the writer of the command (examples/cli/pair_table,
+// Rate of `tricell neighbors` text output: the writer of the command (cli/pair_table,
 // std::to_chars into a reused buffer, on 1 and 2 threads as --threads sets) against the writer it
 // replaced (snprintf "%.17g" per line and one std::string per JSON item, kept here verbatim as the
 // baseline), both writing a file through the command's all-or-nothing Output, interleaved in the

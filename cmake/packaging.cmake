@@ -1,5 +1,6 @@
-# Install rules and package configuration, so that find_package(tricell CONFIG),
-# add_subdirectory() and FetchContent all work. The build-tree export is always generated.
+# Install rules (the libraries, their headers, the `tricell` command) and package configuration,
+# so that find_package(tricell CONFIG), add_subdirectory() and FetchContent all work. The
+# build-tree export is always generated.
 include(CMakePackageConfigHelpers)
 include(GNUInstallDirs)
 
@@ -42,6 +43,9 @@ if(TRICELL_INSTALL)
     if(TARGET tricell_c)
         install(FILES "${PROJECT_SOURCE_DIR}/include/tricell.h"
             DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+    endif()
+    if(TARGET tricell)
+        install(TARGETS tricell RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
     endif()
     if(TARGET tricell_fortran)
         install(DIRECTORY "${PROJECT_BINARY_DIR}/fortran/modules/"

@@ -11,4 +11,4 @@ cmake --build build -j "${TRICELL_JOBS:-2}" --target tricell >/dev/null
 if [ $# -eq 0 ]; then
     set -- neighbors examples/data/quartz.cif --cutoff 3 --sorted
 fi
-./build/examples/cli/tricell "$@"
+./build/cli/tricell "$@"

@@ -1,4 +1,4 @@
-// Plots of the command (examples/cli/plot.hpp): each kind is drawn to PNG and SVG and checked to
+// Plots of the command (cli/plot.hpp): each kind is drawn to PNG and SVG and checked to
 // be a valid image of the asked size with drawn pixels (PNG read back with cairo) or drawing
 // elements (SVG); tick values are round and cover the data.
 #include <cairo.h>

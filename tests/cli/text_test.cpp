@@ -1,4 +1,4 @@
-// Exact text output of the command (examples/cli/text.hpp): every real written reads back as the
+// Exact text output of the command (cli/text.hpp): every real written reads back as the
 // same double and no shorter text would, over random bit patterns (all exponents, subnormals)
 // and the special values; TextSink keeps the order of everything put through any buffer size.
 #include <algorithm>

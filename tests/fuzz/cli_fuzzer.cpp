@@ -1,5 +1,5 @@
 // libFuzzer harness for the `tricell` command line, called in-process through
-// tricell::cli::run() (examples/cli/dispatch.cpp). The input is the argument list, one
+// tricell::cli::run() (cli/dispatch.cpp). The input is the argument list, one
 // argument per line ("neighbors\nquartz.cif\n--cutoff=3\n").
 //
 // The command runs in a scratch directory holding a few small structure files (copied from

@@ -12,8 +12,6 @@
 #include <string>
 #include <vector>
 
-#include <sys/wait.h>
-
 #include <Eigen/Core>
 
 namespace tricell::test {
@@ -36,30 +34,6 @@ inline std::string read_text(const std::string& path) {
 }
 
 /// Names of fixtures/structures/NAME.cif, sorted.
-/// What a command run by run_command() did: its exit status (128 + signal when killed) and its
-/// standard output and error.
-struct CommandResult {
-    int status = -1;
-    std::string out;
-    std::string err;
-};
-
-/// Runs `program args` in `directory`, its output and error captured through files in
-/// `scratch` (a shell command line: args are quoted by the caller).
-inline CommandResult run_command(const std::string& program, const std::string& args,
-                                 const std::string& directory, const std::string& scratch) {
-    const std::string out = scratch + "/stdout";
-    const std::string err = scratch + "/stderr";
-    const std::string command =
-        "cd '" + directory + "' && '" + program + "' " + args + " > '" + out + "' 2> '" + err + "'";
-    const int status = std::system(command.c_str());
-    CommandResult result;
-    result.status = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-    result.out = read_text(out);
-    result.err = read_text(err);
-    return result;
-}
-
 inline std::vector<std::string> fixture_names() {
     std::vector<std::string> names;
     for (const auto& entry : std::filesystem::directory_iterator(fixtures_dir() + "/structures")) {

@@ -1,7 +1,7 @@
 // The `tricell` command on a large MD-like frame: every command finishes in time proportional
 // to its input. The suite writes a random periodic frame of 10^5 atoms at liquid argon's
 // density and an fcc crystal of 1372 atoms as extended XYZ into a fresh directory of the build
-// tree, then runs each command on them. ctest's TIMEOUT (tests/io/CMakeLists.txt) is the time
+// tree, then runs each command on them. ctest's TIMEOUT (tests/cli/CMakeLists.txt) is the time
 // limit; `info` must say that it skipped spglib's space-group search, whose time grows as
 // atoms^2, and run it when --symmetry-max-atoms asks.
 #include <sys/wait.h>
@@ -18,7 +18,7 @@
 
 #include <gtest/gtest.h>
 
-#include "support/fixtures.hpp"
+#include "run_command.hpp"
 
 namespace {
 

@@ -1,4 +1,4 @@
-// The `tricell` command, run as a program: golden outputs of every command (tests/io/golden;
+// The `tricell` command, run as a program: golden outputs of every command (tests/cli/golden;
 // rewrite them with TRICELL_UPDATE_GOLDEN=1 after a deliberate change and review the diff),
 // malformed inputs and usage errors (message and exit status), and --output writing its file
 // completely or not at all. Commands run in tests/io/data with relative file names, so that
@@ -23,7 +23,7 @@
 
 #include <gtest/gtest.h>
 
-#include "support/fixtures.hpp"
+#include "run_command.hpp"
 
 namespace {
 
@@ -35,7 +35,7 @@ std::string data_dir() {
     return tricell::test::source_dir() + "/tests/io/data";
 }
 std::string golden_dir() {
-    return tricell::test::source_dir() + "/tests/io/golden";
+    return tricell::test::source_dir() + "/tests/cli/golden";
 }
 
 class Cli : public ::testing::Test {
