@@ -1,12 +1,14 @@
 // Property tests of the neighbour search against the brute-force oracle over thousands of
-// random cases with fixed seeds (the seed is printed on failure). One typed suite runs every
-// property on every backend (dense, linked, hash, octree, direct), and every backend is compared
-// with the dense one pair for pair.
+// random cases with fixed seeds (the seed is printed on failure). One value-parameterised suite
+// runs every property on every backend of the registry (tricell::search_backends(), `auto`
+// included), and every backend is compared with the dense one pair for pair.
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <numeric>
+#include <ostream>
 #include <random>
+#include <vector>
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
@@ -100,57 +102,50 @@ NeighborList run(const RandomSystem& sys, NeighborOptions o, bool half) {
     return tricell::compute_neighbors(sys.box(), sys.positions, o);
 }
 
-template <SearchBackend B> struct Backend { static constexpr SearchBackend value = B; };
+// The suite's parameter: a backend of the registry, printed by its name (so that ctest names the
+// tests .../dense, .../direct).
+struct Backend {
+    SearchBackend value;
+};
+void PrintTo(const Backend& backend, std::ostream* os) {
+    *os << tricell::backend_name(backend.value);
+}
+std::vector<Backend> registry_backends() {
+    std::vector<Backend> out;
+    for (const SearchBackend backend : tricell::search_backends()) {
+        out.push_back({backend});
+    }
+    return out;
+}
 
-} // namespace
-
-template <class T> class NeighborProperty : public ::testing::Test {
+class NeighborProperty : public ::testing::TestWithParam<Backend> {
   protected:
-    static constexpr SearchBackend backend = T::value;
+    SearchBackend backend() const { return GetParam().value; }
     NeighborOptions options(std::uint64_t seed, double cutoff) const {
-        return options_for(seed, cutoff, backend);
+        return options_for(seed, cutoff, backend());
     }
     // The direct backend tests N^2 pairs through every image: it is meant for tiny cells, so its
     // suite takes the cases of up to 40 atoms (about two thirds of them).
     bool skip(const RandomSystem& sys) const {
-        return backend == SearchBackend::direct && sys.positions.size() > 40;
+        return backend() == SearchBackend::direct && sys.positions.size() > 40;
     }
 };
 
-using Backends =
-    ::testing::Types<Backend<SearchBackend::dense>, Backend<SearchBackend::linked>,
-                     Backend<SearchBackend::hash>, Backend<SearchBackend::octree>,
-                     Backend<SearchBackend::direct>, Backend<SearchBackend::automatic>>;
-struct BackendNames {
-    template <class T> static std::string GetName(int) { return tricell::backend_name(T::value); }
-};
-TYPED_TEST_SUITE(NeighborProperty, Backends, BackendNames);
+INSTANTIATE_TEST_SUITE_P(EveryBackend, NeighborProperty, ::testing::ValuesIn(registry_backends()));
 
-// The typed suite's list is the registry's: a backend added to the table and not here fails.
-template <class List> struct BackendsOf;
-template <class... Ts> struct BackendsOf<::testing::Types<Ts...>> {
-    static std::vector<SearchBackend> get() { return {Ts::value...}; }
-};
+} // namespace
 
-TEST(NeighborPropertySuite, CoversEveryBackendOfTheRegistry) {
-    std::vector<SearchBackend> typed = BackendsOf<Backends>::get();
-    std::vector<SearchBackend> registry = tricell::search_backends();
-    std::sort(typed.begin(), typed.end());
-    std::sort(registry.begin(), registry.end());
-    EXPECT_EQ(typed, registry);
-}
-
-TYPED_TEST(NeighborProperty, FullListEqualsBruteForce_RandomCases) {
+TEST_P(NeighborProperty, FullListEqualsBruteForce_RandomCases) {
     for (std::uint64_t seed = 0; seed < case_count; ++seed) {
         const RandomSystem sys = tricell::testing::random_system(seed);
-        if (this->skip(sys)) {
+        if (skip(sys)) {
             continue;
         }
         SCOPED_TRACE(testing::Message() << "seed " << seed << " (" << sys.kind << "), N "
                                         << sys.positions.size() << ", cutoff " << sys.cutoff);
         const PairMap expected =
             tricell::testing::brute_force_pairs(sys.box(), sys.positions, sys.cutoff);
-        const NeighborOptions o = this->options(seed, sys.cutoff);
+        const NeighborOptions o = options(seed, sys.cutoff);
         const PairMap full = tricell::testing::to_map(run(sys, o, false));
         expect_same_pairs(expected, full, sys.cutoff, tolerance(sys), "full vs oracle");
         if (::testing::Test::HasFailure()) {
@@ -159,14 +154,14 @@ TYPED_TEST(NeighborProperty, FullListEqualsBruteForce_RandomCases) {
     }
 }
 
-TYPED_TEST(NeighborProperty, HalfListEqualsCanonicalFull_RandomCases) {
+TEST_P(NeighborProperty, HalfListEqualsCanonicalFull_RandomCases) {
     for (std::uint64_t seed = 0; seed < case_count; ++seed) {
         const RandomSystem sys = tricell::testing::random_system(seed);
-        if (this->skip(sys)) {
+        if (skip(sys)) {
             continue;
         }
         SCOPED_TRACE(testing::Message() << "seed " << seed << " (" << sys.kind << ")");
-        const NeighborOptions o = this->options(seed, sys.cutoff);
+        const NeighborOptions o = options(seed, sys.cutoff);
         const NeighborList full_list = run(sys, o, false);
         const NeighborList half_list = run(sys, o, true);
         const PairMap full = tricell::testing::to_map(full_list);
@@ -187,14 +182,14 @@ TYPED_TEST(NeighborProperty, HalfListEqualsCanonicalFull_RandomCases) {
     }
 }
 
-TYPED_TEST(NeighborProperty, SameListAsTheDenseBackend_RandomCases) {
+TEST_P(NeighborProperty, SameListAsTheDenseBackend_RandomCases) {
     for (std::uint64_t seed = 0; seed < case_count; seed += 2) {
         const RandomSystem sys = tricell::testing::random_system(seed);
-        if (this->skip(sys)) {
+        if (skip(sys)) {
             continue;
         }
         SCOPED_TRACE(testing::Message() << "seed " << seed << " (" << sys.kind << ")");
-        NeighborOptions o = this->options(seed, sys.cutoff);
+        NeighborOptions o = options(seed, sys.cutoff);
         o.sorted = true;
         NeighborOptions dense = o;
         dense.backend = SearchBackend::dense;
@@ -222,15 +217,15 @@ std::uint64_t bits(double v) {
 // d, and a half list's pair has the full list's D and d of the same (i, j, S), bit for bit,
 // whichever orientation the backend found it in. With a uniform cutoff and with per-atom radii
 // (the variable-cutoff path orients pair by pair).
-TYPED_TEST(NeighborProperty, HalfAndReversedPairsHaveExactlyNegatedVectors_RandomCases) {
+TEST_P(NeighborProperty, HalfAndReversedPairsHaveExactlyNegatedVectors_RandomCases) {
     const auto negated = [](double v) { return v == 0.0 ? 0.0 : -v; };
     for (std::uint64_t seed = 3; seed < case_count; seed += 4) {
         const RandomSystem sys = tricell::testing::random_system(seed);
-        if (this->skip(sys)) {
+        if (skip(sys)) {
             continue;
         }
         SCOPED_TRACE(testing::Message() << "seed " << seed << " (" << sys.kind << ")");
-        NeighborOptions o = this->options(seed, sys.cutoff);
+        NeighborOptions o = options(seed, sys.cutoff);
         if (seed % 8 == 7 && !sys.positions.empty()) {
             std::mt19937_64 rng(seed);
             std::uniform_real_distribution<double> unit(0.2, 0.5);
@@ -267,17 +262,17 @@ TYPED_TEST(NeighborProperty, HalfAndReversedPairsHaveExactlyNegatedVectors_Rando
 
 // Per-atom radii and per-species tables: the oracle at the largest cutoff, filtered by each
 // pair's own cutoff; a pair may differ only within rounding of its own cutoff.
-TYPED_TEST(NeighborProperty, VariableCutoffsEqualBruteForce_RandomCases) {
+TEST_P(NeighborProperty, VariableCutoffsEqualBruteForce_RandomCases) {
     for (std::uint64_t seed = 7; seed < case_count; seed += 3) {
         const RandomSystem sys = tricell::testing::random_system(seed);
-        if (this->skip(sys)) {
+        if (skip(sys)) {
             continue;
         }
         SCOPED_TRACE(testing::Message() << "seed " << seed << " (" << sys.kind << ")");
         std::mt19937_64 rng(seed + 99);
         std::uniform_real_distribution<double> unit(0, 1);
         const std::size_t n = sys.positions.size();
-        NeighborOptions o = this->options(seed, sys.cutoff);
+        NeighborOptions o = options(seed, sys.cutoff);
         o.cutoff = 0;
         o.half = seed % 2 == 0;
         const bool by_species = seed % 3 == 1;
@@ -337,15 +332,15 @@ TYPED_TEST(NeighborProperty, VariableCutoffsEqualBruteForce_RandomCases) {
     }
 }
 
-TYPED_TEST(NeighborProperty, ResultDoesNotDependOnTheGrid_RandomCases) {
+TEST_P(NeighborProperty, ResultDoesNotDependOnTheGrid_RandomCases) {
     for (std::uint64_t seed = 1; seed < case_count; seed += 3) {
         const RandomSystem sys = tricell::testing::random_system(seed);
-        if (this->skip(sys)) {
+        if (skip(sys)) {
             continue;
         }
         SCOPED_TRACE(testing::Message() << "seed " << seed << " (" << sys.kind << ")");
         NeighborOptions coarse;
-        coarse.backend = TestFixture::backend;
+        coarse.backend = backend();
         coarse.cutoff = sys.cutoff;
         coarse.cells_per_cutoff = 1;
         coarse.max_cells = 1; // one cell: every pair found through images only
@@ -364,10 +359,10 @@ TYPED_TEST(NeighborProperty, ResultDoesNotDependOnTheGrid_RandomCases) {
     }
 }
 
-TYPED_TEST(NeighborProperty, InvariantUnderLatticeTranslationOfAnyAtom_RandomCases) {
+TEST_P(NeighborProperty, InvariantUnderLatticeTranslationOfAnyAtom_RandomCases) {
     for (std::uint64_t seed = 2; seed < case_count; seed += 4) {
         RandomSystem sys = tricell::testing::random_system(seed);
-        if (this->skip(sys)) {
+        if (skip(sys)) {
             continue;
         }
         if (sys.positions.empty() || !sys.pbc.any()) {
@@ -380,7 +375,7 @@ TYPED_TEST(NeighborProperty, InvariantUnderLatticeTranslationOfAnyAtom_RandomCas
         for (int k = 0; k < 3; ++k) {
             t[k] = sys.pbc[k] ? int(rng() % 41) - 20 : 0;
         }
-        const NeighborOptions o = this->options(seed, sys.cutoff);
+        const NeighborOptions o = options(seed, sys.cutoff);
         const PairMap before = tricell::testing::to_map(run(sys, o, false));
         sys.positions[moved] += sys.h * t.cast<double>();
         const PairMap after = tricell::testing::to_map(run(sys, o, false));
@@ -403,10 +398,10 @@ TYPED_TEST(NeighborProperty, InvariantUnderLatticeTranslationOfAnyAtom_RandomCas
     }
 }
 
-TYPED_TEST(NeighborProperty, InvariantUnderRotationOfTheWholeSystem_RandomCases) {
+TEST_P(NeighborProperty, InvariantUnderRotationOfTheWholeSystem_RandomCases) {
     for (std::uint64_t seed = 3; seed < case_count; seed += 5) {
         RandomSystem sys = tricell::testing::random_system(seed);
-        if (this->skip(sys)) {
+        if (skip(sys)) {
             continue;
         }
         SCOPED_TRACE(testing::Message() << "seed " << seed << " (" << sys.kind << ")");
@@ -416,7 +411,7 @@ TYPED_TEST(NeighborProperty, InvariantUnderRotationOfTheWholeSystem_RandomCases)
             Eigen::Quaterniond(
                 Eigen::Vector4d(normal(rng), normal(rng), normal(rng), normal(rng)).normalized())
                 .toRotationMatrix();
-        const NeighborOptions o = this->options(seed, sys.cutoff);
+        const NeighborOptions o = options(seed, sys.cutoff);
         const PairMap before = tricell::testing::to_map(run(sys, o, true));
         sys.h = rotation * sys.h;
         for (auto& x : sys.positions) {
@@ -434,14 +429,14 @@ TYPED_TEST(NeighborProperty, InvariantUnderRotationOfTheWholeSystem_RandomCases)
     }
 }
 
-TYPED_TEST(NeighborProperty, VisitorSeesExactlyTheStoredPairs_RandomCases) {
+TEST_P(NeighborProperty, VisitorSeesExactlyTheStoredPairs_RandomCases) {
     for (std::uint64_t seed = 4; seed < case_count; seed += 7) {
         const RandomSystem sys = tricell::testing::random_system(seed);
-        if (this->skip(sys)) {
+        if (skip(sys)) {
             continue;
         }
         SCOPED_TRACE(testing::Message() << "seed " << seed << " (" << sys.kind << ")");
-        NeighborOptions o = this->options(seed, sys.cutoff);
+        NeighborOptions o = options(seed, sys.cutoff);
         o.half = seed % 2 == 0;
         const PairMap stored =
             tricell::testing::to_map(tricell::compute_neighbors(sys.box(), sys.positions, o));
@@ -454,14 +449,14 @@ TYPED_TEST(NeighborProperty, VisitorSeesExactlyTheStoredPairs_RandomCases) {
     }
 }
 
-TYPED_TEST(NeighborProperty, OutputIdenticalForAnyThreadCount_RandomCases) {
+TEST_P(NeighborProperty, OutputIdenticalForAnyThreadCount_RandomCases) {
     for (std::uint64_t seed = 5; seed < case_count; seed += 11) {
         const RandomSystem sys = tricell::testing::random_system(seed);
-        if (this->skip(sys)) {
+        if (skip(sys)) {
             continue;
         }
         SCOPED_TRACE(testing::Message() << "seed " << seed << " (" << sys.kind << ")");
-        NeighborOptions o = this->options(seed, sys.cutoff);
+        NeighborOptions o = options(seed, sys.cutoff);
         o.half = seed % 2 == 1;
         o.threads = 1;
         const NeighborList one = tricell::compute_neighbors(sys.box(), sys.positions, o);
@@ -482,15 +477,15 @@ TYPED_TEST(NeighborProperty, OutputIdenticalForAnyThreadCount_RandomCases) {
 // shifts, distances or vectors too (so that each column in turn is the widest). One list object
 // is reused over all the cases, as a caller in a loop does (the grouping keeps its scratch in
 // it), and must equal a fresh list each time.
-TYPED_TEST(NeighborProperty, GroupedListIsTheUnorderedListStablyGroupedByI_RandomCases) {
+TEST_P(NeighborProperty, GroupedListIsTheUnorderedListStablyGroupedByI_RandomCases) {
     NeighborList reused;
     for (std::uint64_t seed = 2; seed < case_count; seed += 3) {
         const RandomSystem sys = tricell::testing::random_system(seed);
-        if (this->skip(sys)) {
+        if (skip(sys)) {
             continue;
         }
         SCOPED_TRACE(testing::Message() << "seed " << seed << " (" << sys.kind << ")");
-        NeighborOptions o = this->options(seed, sys.cutoff);
+        NeighborOptions o = options(seed, sys.cutoff);
         o.half = seed % 2 == 1;
         o.quantities.shifts = seed % 5 != 0;
         o.quantities.distances = seed % 7 != 3;
@@ -546,14 +541,14 @@ TYPED_TEST(NeighborProperty, GroupedListIsTheUnorderedListStablyGroupedByI_Rando
     }
 }
 
-TYPED_TEST(NeighborProperty, CellReductionDoesNotChangeTheList_RandomCases) {
+TEST_P(NeighborProperty, CellReductionDoesNotChangeTheList_RandomCases) {
     for (std::uint64_t seed = 1; seed < case_count; seed += 6) { // the strongly skewed kind
         const RandomSystem sys = tricell::testing::random_system(seed);
-        if (this->skip(sys)) {
+        if (skip(sys)) {
             continue;
         }
         SCOPED_TRACE(testing::Message() << "seed " << seed << " (" << sys.kind << ")");
-        NeighborOptions o = this->options(seed, sys.cutoff);
+        NeighborOptions o = options(seed, sys.cutoff);
         o.half = seed % 4 == 1;
         o.reduce_cell = false;
         const PairMap plain = tricell::testing::to_map(run(sys, o, o.half));

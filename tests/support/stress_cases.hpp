@@ -29,9 +29,7 @@ inline std::vector<StressCase> stress_cases(std::size_t count, std::size_t max_a
                                             std::uint64_t seed = 20261203) {
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> unit(0, 1);
-    const SearchBackend backends[] = {SearchBackend::automatic, SearchBackend::dense,
-                                      SearchBackend::linked, SearchBackend::hash,
-                                      SearchBackend::octree};
+    const std::vector<SearchBackend>& backends = search_backends();
     std::vector<StressCase> out;
     for (std::size_t c = 0; c < count; ++c) {
         StressCase s;
@@ -47,7 +45,7 @@ inline std::vector<StressCase> stress_cases(std::size_t count, std::size_t max_a
             s.positions.push_back(s.h * Eigen::Vector3d(unit(rng), unit(rng), unit(rng)));
         }
         s.options.cutoff = 2.5 + 1.5 * unit(rng);
-        s.options.backend = backends[c % 5];
+        s.options.backend = backends[c % backends.size()];
         s.options.half = c % 2 == 1;
         s.options.sorted = c % 3 == 0;
         s.options.grouped = c % 3 == 1;

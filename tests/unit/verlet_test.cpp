@@ -161,11 +161,9 @@ TrajectoryStats run_trajectory(std::uint64_t seed, Wrapping wrapping, int steps)
         cutoff > width ? 6 + std::size_t(unit(rng) * 8) : 20 + std::size_t(unit(rng) * 24);
     VerletOptions options = verlet_options(cutoff, skin, half);
     options.neighbors.cells_per_cutoff = 1 + double(seed % 3);
-    // The Verlet list works over any backend.
-    const tricell::SearchBackend backends[] = {
-        tricell::SearchBackend::automatic, tricell::SearchBackend::dense,
-        tricell::SearchBackend::linked, tricell::SearchBackend::hash};
-    options.neighbors.backend = backends[(seed / 3) % 4];
+    // The Verlet list works over any backend: seeds 1 to 30 take each of the registry's in turn.
+    const std::vector<tricell::SearchBackend>& backends = tricell::search_backends();
+    options.neighbors.backend = backends[(seed / 3) % backends.size()];
     VerletList list(options);
 
     std::vector<Eigen::Vector3d> truth = random_positions(rng, box, n);
