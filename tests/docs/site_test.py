@@ -182,7 +182,9 @@ def problems(events):
         elif method == "Network.loadingFailed" and not params.get("canceled"):
             found.append("request failed (%s)" % params.get("errorText"))
         elif method == "Runtime.exceptionThrown":
-            found.append("exception: %s" % params["exceptionDetails"].get("text"))
+            details = params["exceptionDetails"]
+            found.append("exception: %s" % details.get("exception", {}).get("description",
+                                                                              details.get("text")))
         elif method == "Runtime.consoleAPICalled" and params["type"] in ("error", "assert"):
             found.append("console %s: %s" % (params["type"], [a.get("value") for a in params["args"]]))
         elif method == "Log.entryAdded" and params["entry"]["level"] == "error":
