@@ -1,5 +1,5 @@
 // tricell.Rdf and tricell.nearest_neighbors: the analysis of tricell::core (include/tricell/
-// analysis/) behind numpy. Inputs go through the shared array helpers (arrays.hpp), results
+// analysis/) behind numpy. Inputs go through the shared argument checks (arguments.hpp), results
 // come back as fresh numpy arrays; the GIL is released while a frame is histogrammed or the
 // neighbours are searched.
 #include <string>
@@ -12,7 +12,7 @@
 #include <tricell/analysis/nearest.hpp>
 #include <tricell/analysis/rdf.hpp>
 
-#include "arrays.hpp"
+#include "arguments.hpp"
 
 namespace tricell::python {
 

@@ -10,7 +10,7 @@
 
 #include <tricell/displacement.hpp>
 
-#include "arrays.hpp"
+#include "arguments.hpp"
 
 namespace tricell::python {
 

@@ -12,7 +12,7 @@
 #include <tricell/error.hpp>
 #include <tricell/neighbor_list.hpp>
 
-#include "arrays.hpp"
+#include "arguments.hpp"
 
 namespace tricell::python {
 

@@ -21,21 +21,12 @@
 #include <tricell/neighbor_list.hpp>
 #include <tricell/verlet.hpp>
 
-#include "arrays.hpp"
+#include "arguments.hpp"
+#include "columns.hpp"
 
 namespace tricell::python {
 
 namespace {
-
-// repr(value), at most 80 characters, or its type's name when repr itself fails.
-std::string described(const py::handle& value) {
-    try {
-        const std::string text = py::repr(value).cast<std::string>();
-        return text.size() > 80 ? text.substr(0, 77) + "..." : text;
-    } catch (const py::error_already_set&) {
-        return std::string("a ") + Py_TYPE(value.ptr())->tp_name;
-    }
-}
 
 // `value` as a sequence (a list, a tuple, an array of one more dimension), else ValueError.
 py::sequence checked_sequence(const py::handle& value, const char* name) {
@@ -47,54 +38,6 @@ py::sequence checked_sequence(const py::handle& value, const char* name) {
     }
     return py::reinterpret_borrow<py::sequence>(value);
 }
-
-} // namespace
-
-void set_cutoff(const py::object& cutoff, NeighborOptions& options) {
-    if (py::isinstance<py::dict>(cutoff)) {
-        for (const auto& entry : cutoff.cast<py::dict>()) {
-            try {
-                const auto key = entry.first.cast<std::pair<std::int32_t, std::int32_t>>();
-                options.species_cutoffs.push_back(
-                    SpeciesCutoff{key.first, key.second, entry.second.cast<double>()});
-            } catch (const py::cast_error&) {
-                throw py::value_error("a cutoff dict maps pairs of integer species to "
-                                      "cutoffs (got " +
-                                      py::repr(entry.first).cast<std::string>() + ": " +
-                                      py::repr(entry.second).cast<std::string>() + ")");
-            }
-        }
-        if (options.species_cutoffs.empty()) {
-            throw py::value_error("the cutoff dict of species pairs is empty");
-        }
-    } else if (!cutoff.is_none()) {
-        try {
-            options.cutoff = cutoff.cast<double>();
-        } catch (const py::cast_error&) {
-            throw py::value_error("cutoff must be a number, a dict of species pairs or None "
-                                  "(got " +
-                                  py::repr(cutoff).cast<std::string>() + ")");
-        }
-    }
-}
-
-std::size_t max_bytes_argument(const py::object& value) {
-    if (value.is_none()) {
-        return NeighborOptions().max_bytes;
-    }
-    if (py::isinstance<py::int_>(value) && !py::isinstance<py::bool_>(value)) {
-        try {
-            return value.cast<std::size_t>();
-        } catch (const py::cast_error&) {
-            // negative or past 2^64: refused below
-        }
-    }
-    throw py::value_error("max_bytes must be a whole number of bytes >= 0 (0: no limit) or None "
-                          "(three quarters of the memory this process may use), got " +
-                          described(value));
-}
-
-namespace {
 
 class PyNeighborList {
   public:
@@ -123,8 +66,9 @@ class PyNeighborList {
         const DoubleArray x = points_array(points);
         const Box search_box = box_from_rows(box, periodic);
         NeighborOptions options = options_;
-        options.quantities = parse_quantities(quantities);
-        require_offsets_if_asked(quantities);
+        const QuantitySpec spec = parse_quantities(quantities);
+        options.quantities = spec.stored;
+        require_offsets_if_asked(spec);
         const auto n = static_cast<std::size_t>(x.shape(0));
         const PointsView view(x.data(), n);
         if (per_atom_radii_ == radii.is_none()) {
@@ -170,7 +114,7 @@ class PyNeighborList {
             search_.build(search_box, view, options);
             search_.compute(*list);
         }
-        return pair_columns(*list, quantities, copy ? nullptr : list);
+        return pair_columns(*list, spec, copy ? nullptr : list);
     }
 
     // One list per structure of a batch (compute_neighbors_batch), the NeighborList's options
@@ -182,8 +126,9 @@ class PyNeighborList {
             throw py::value_error("compute_batch needs a NeighborList made with one float cutoff");
         }
         NeighborOptions options = options_;
-        options.quantities = parse_quantities(quantities);
-        require_offsets_if_asked(quantities);
+        const QuantitySpec spec = parse_quantities(quantities);
+        options.quantities = spec.stored;
+        require_offsets_if_asked(spec);
         const py::sequence xs = checked_sequence(points, "points");
         const py::sequence hs = checked_sequence(boxes, "boxes");
         if (hs.size() != xs.size()) {
@@ -223,7 +168,7 @@ class PyNeighborList {
             std::lock_guard<std::mutex> lock(mutex_);
             compute_neighbors_batch(structures, options, batch_);
         }
-        return batch_columns(batch_, quantities);
+        return batch_columns(batch_, spec);
     }
 
     bool full() const { return !options_.half; }
@@ -233,8 +178,8 @@ class PyNeighborList {
 
   private:
     // 'o' (per-atom offsets) exists only for a list grouped by i.
-    void require_offsets_if_asked(const std::string& quantities) const {
-        if (quantities.find('o') != std::string::npos && !options_.with_offsets()) {
+    void require_offsets_if_asked(const QuantitySpec& spec) const {
+        if (spec.offsets && !options_.with_offsets()) {
             throw py::value_error("quantity 'o' (per-atom offsets) needs a NeighborList made "
                                   "with grouped=True or sorted=True");
         }
@@ -289,14 +234,14 @@ class PyVerletList {
                       const std::string& quantities) {
         const DoubleArray x = points_array(points);
         const Box search_box = box_from_rows(box, periodic);
-        parse_quantities(quantities);
+        const QuantitySpec spec = parse_quantities(quantities);
         const PointsView view(x.data(), static_cast<std::size_t>(x.shape(0)));
         {
             py::gil_scoped_release release;
             std::lock_guard<std::mutex> lock(mutex_);
             rebuilt_ = list_.update(search_box, view);
         }
-        return pair_columns(list_.pairs(), quantities, nullptr);
+        return pair_columns(list_.pairs(), spec, nullptr);
     }
 
     double cutoff() const { return options_.neighbors.cutoff; }

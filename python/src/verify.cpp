@@ -1,6 +1,6 @@
 // tricell.verify: any code's neighbour list (numpy arrays i, j, S and optionally d, D, e.g.
 // from ASE's neighbor_list("ijSdD", ...)) checked by tricell::verify, and its report as
-// tricell.VerifyReport. The arrays follow the argument rules of arrays.cpp; the search for the
+// tricell.VerifyReport. The arrays follow the argument rules of arguments.hpp; the search for the
 // reference runs without the GIL.
 #include <cstdint>
 #include <string>
@@ -12,7 +12,7 @@
 #include <tricell/neighbor_list.hpp>
 #include <tricell/verify.hpp>
 
-#include "arrays.hpp"
+#include "arguments.hpp"
 
 namespace tricell::python {
 

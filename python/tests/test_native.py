@@ -59,6 +59,45 @@ def test_letters_dtypes_and_shapes():
     np.testing.assert_array_equal(Dj[1], j)
 
 
+@pytest.mark.parametrize("seed", range(4))
+def test_every_quantities_string_gives_its_columns_in_order(seed):
+    """Random strings of the letters (repeats, any order) through NeighborList (views and
+    copies), compute_batch and VerletList: each gives the columns of the call with every letter,
+    in its own order; an unknown letter is named with the quantities argument."""
+    cell, positions, pbc, cutoff, _ = random_system(seed, atoms=12)
+    letters = "ijSdDPo"
+    nl = tricell.NeighborList(cutoff, grouped=True)
+    full = dict(zip(letters, nl.compute(positions, cell, pbc, letters)))
+    offsets, *batch = nl.compute_batch([positions, positions], [cell, cell], pbc, letters)
+    batch = dict(zip(letters, batch))
+    verlet = tricell.VerletList(cutoff, 0.3)
+    by_verlet = dict(zip(letters, verlet.update(positions, cell, pbc, letters)))
+    rng = np.random.default_rng(seed)
+    for _ in range(40):
+        quantities = "".join(rng.choice(list(letters), size=rng.integers(1, 9)))
+        calls = [(full, nl.compute(positions, cell, pbc, quantities)),
+                 (full, nl.compute(positions, cell, pbc, quantities, copy=False)),
+                 (batch, nl.compute_batch([positions, positions], [cell, cell], pbc,
+                                          quantities)[1:]),
+                 (by_verlet, verlet.update(positions, cell, pbc, quantities))]
+        for expected, got in calls:
+            if len(quantities) == 1 and not isinstance(got, tuple):
+                got = (got,)
+            assert len(got) == len(quantities), quantities
+            for letter, column in zip(quantities, got):
+                assert column.dtype == expected[letter].dtype, (quantities, letter)
+                np.testing.assert_array_equal(column, expected[letter], err_msg=quantities)
+    message = r"unknown quantity 'x' in quantities='iSx' \(expected letters among i, j, S, d, D, P, o\)"
+    with pytest.raises(ValueError, match=message):
+        nl.compute(positions, cell, pbc, "iSx")
+    with pytest.raises(ValueError, match=message):
+        nl.compute_batch([positions], [cell], pbc, "iSx")
+    with pytest.raises(ValueError, match=message):
+        verlet.update(positions, cell, pbc, "iSx")
+    with pytest.raises(ValueError, match=r"quantities must name at least one of i, j, S, d, D, P, o"):
+        nl.compute(positions, cell, pbc, "")
+
+
 def test_array_likes_are_converted():
     cell, positions, pbc, cutoff, _ = random_system(11, atoms=16)
     nl = tricell.NeighborList(cutoff, sorted=True)

@@ -1,9 +1,13 @@
-#include "arrays.hpp"
+// The arguments of the module's functions checked and converted (the rules are in
+// arguments.hpp): arrays by the kind of their values, then their shape; the cutoff and max_bytes
+// by their Python type.
+#include "arguments.hpp"
 
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <sstream>
+#include <utility>
 #include <vector>
 
 namespace tricell::python {
@@ -24,27 +28,6 @@ std::string shape_of(const py::array& a) {
 [[noreturn]] void value_error(const std::string& message) {
     throw py::value_error(message);
 }
-
-// A view (base non-null) or a copy of `count` rows of `width` elements starting at `data`.
-template <class T>
-py::array column(const T* data, std::size_t count, std::size_t width, const py::object& base) {
-    std::vector<py::ssize_t> shape{static_cast<py::ssize_t>(count)};
-    if (width > 1) {
-        shape.push_back(static_cast<py::ssize_t>(width));
-    }
-    if (base && count > 0) {
-        return py::array_t<T>(shape, data, base);
-    }
-    py::array_t<T> out(shape);
-    if (count > 0) {
-        std::memcpy(out.mutable_data(), data, count * width * sizeof(T));
-    }
-    return std::move(out);
-}
-
-} // namespace
-
-namespace {
 
 std::string dtype_of(const py::array& a) {
     return py::str(a.dtype()).cast<std::string>();
@@ -355,119 +338,57 @@ py::array checked_array(const py::handle& value, const std::string& name, const 
                 rule + "\")");
 }
 
-Quantities parse_quantities(const std::string& letters) {
-    Quantities q;
-    q.shifts = q.distances = q.vectors = false;
-    for (char letter : letters) {
-        switch (letter) {
-        case 'i':
-        case 'j':
-        case 'P':
-        case 'o':
-            break;
-        case 'S':
-            q.shifts = true;
-            break;
-        case 'd':
-            q.distances = true;
-            break;
-        case 'D':
-            q.vectors = true;
-            break;
-        default:
-            value_error("unknown quantity '" + std::string(1, letter) + "' in '" + letters +
-                        "' (expected letters among i, j, S, d, D, P, o)");
-        }
+std::string described(const py::handle& value) {
+    try {
+        const std::string text = py::repr(value).cast<std::string>();
+        return text.size() > 80 ? text.substr(0, 77) + "..." : text;
+    } catch (const py::error_already_set&) {
+        return std::string("a ") + Py_TYPE(value.ptr())->tp_name;
     }
-    if (letters.empty()) {
-        value_error("quantities must name at least one of i, j, S, d, D, P (got '')");
-    }
-    return q;
 }
 
-namespace {
-// The columns of a list or of a batch's lists (the same accessors), views on `base` when it is
-// set, copies otherwise.
-template <class List>
-py::object columns_of(const List& list, const std::string& letters, const py::object& base) {
-    const std::size_t n = list.size();
-    py::tuple out(letters.size());
-    for (std::size_t k = 0; k < letters.size(); ++k) {
-        py::array a;
-        switch (letters[k]) {
-        case 'i':
-            a = column(list.i().data(), n, 1, base);
-            break;
-        case 'j':
-            a = column(list.j().data(), n, 1, base);
-            break;
-        case 'S':
-            a = column(list.shifts().data(), n, 3, base);
-            break;
-        case 'd':
-            a = column(list.distances().data(), n, 1, base);
-            break;
-        case 'D':
-            a = column(list.vectors().data(), n, 3, base);
-            break;
-        case 'P': {
-            py::array_t<std::uint32_t> pairs(
-                std::vector<py::ssize_t>{static_cast<py::ssize_t>(n), 2});
-            auto* p = pairs.mutable_data();
-            for (std::size_t m = 0; m < n; ++m) {
-                p[2 * m] = list.i()[m];
-                p[2 * m + 1] = list.j()[m];
+void set_cutoff(const py::object& cutoff, NeighborOptions& options) {
+    if (py::isinstance<py::dict>(cutoff)) {
+        for (const auto& entry : cutoff.cast<py::dict>()) {
+            try {
+                const auto key = entry.first.cast<std::pair<std::int32_t, std::int32_t>>();
+                options.species_cutoffs.push_back(
+                    SpeciesCutoff{key.first, key.second, entry.second.cast<double>()});
+            } catch (const py::cast_error&) {
+                throw py::value_error("a cutoff dict maps pairs of integer species to "
+                                      "cutoffs (got " +
+                                      py::repr(entry.first).cast<std::string>() + ": " +
+                                      py::repr(entry.second).cast<std::string>() + ")");
             }
-            a = pairs;
-            break;
         }
-        case 'o': {
-            const std::vector<std::size_t>& offsets = list.offsets();
-            py::array_t<std::int64_t> copy(static_cast<py::ssize_t>(offsets.size()));
-            std::copy(offsets.begin(), offsets.end(), copy.mutable_data());
-            a = copy;
-            break;
+        if (options.species_cutoffs.empty()) {
+            throw py::value_error("the cutoff dict of species pairs is empty");
         }
+    } else if (!cutoff.is_none()) {
+        try {
+            options.cutoff = cutoff.cast<double>();
+        } catch (const py::cast_error&) {
+            throw py::value_error("cutoff must be a number, a dict of species pairs or None "
+                                  "(got " +
+                                  py::repr(cutoff).cast<std::string>() + ")");
         }
-        out[k] = a;
     }
-    if (letters.size() == 1) {
-        return out[0];
-    }
-    return std::move(out);
 }
 
-} // namespace
-
-py::object pair_columns(const NeighborList& list, const std::string& letters,
-                        const std::shared_ptr<const NeighborList>& owner) {
-    py::object base;
-    if (owner) {
-        auto* keep = new std::shared_ptr<const NeighborList>(owner);
-        base = py::capsule(
-            keep, [](void* p) { delete static_cast<std::shared_ptr<const NeighborList>*>(p); });
+std::size_t max_bytes_argument(const py::object& value) {
+    if (value.is_none()) {
+        return NeighborOptions().max_bytes;
     }
-    return columns_of(list, letters, base);
-}
-
-py::tuple batch_columns(const BatchList& list, const std::string& letters) {
-    const std::vector<std::size_t>& offsets = list.pair_offsets();
-    py::array_t<std::int64_t> pair_offsets(static_cast<py::ssize_t>(offsets.size()));
-    for (std::size_t s = 0; s < offsets.size(); ++s) {
-        pair_offsets.mutable_data()[s] = static_cast<std::int64_t>(offsets[s]);
-    }
-    py::object columns = columns_of(list, letters, py::object());
-    py::tuple out(1 + letters.size());
-    out[0] = pair_offsets;
-    if (letters.size() == 1) {
-        out[1] = columns;
-    } else {
-        const py::tuple t = columns.cast<py::tuple>();
-        for (std::size_t k = 0; k < letters.size(); ++k) {
-            out[k + 1] = t[k];
+    if (py::isinstance<py::int_>(value) && !py::isinstance<py::bool_>(value)) {
+        try {
+            return value.cast<std::size_t>();
+        } catch (const py::cast_error&) {
+            // negative or past 2^64: refused below
         }
     }
-    return out;
+    throw py::value_error("max_bytes must be a whole number of bytes >= 0 (0: no limit) or None "
+                          "(three quarters of the memory this process may use), got " +
+                          described(value));
 }
 
 } // namespace tricell::python

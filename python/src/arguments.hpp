@@ -1,6 +1,7 @@
-// Translations between numpy arrays and tricell's C++ types, shared by the module's bindings.
+// The arguments of the module's functions, checked and converted to tricell's C++ types; every
+// binding reads its arguments through these (the output arrays are columns.hpp's job).
 //
-// Inputs: every array argument goes through numpy_array() (np.asarray, so lists, tuples and
+// Arrays: every array argument goes through numpy_array() (np.asarray, so lists, tuples and
 // objects with __array__ work), and its dtype.kind is classified before anything is cast, so
 // a cast never hides a wrong kind of value. This file holds the whole rule:
 //   - positions, boxes and per-atom values (points, box, radii) take real numbers: kinds 'f'
@@ -24,21 +25,18 @@
 // library to check (a NaN position is reported by tricell with its index), so no rule is
 // written twice. tricell._tricell._as_array applies the same rules for the Python drop-ins.
 //
-// Outputs: the columns of a tricell::NeighborList either copied into fresh numpy arrays or
-// handed out as views whose base object keeps the list's buffers alive (PairColumns). Letters
-// of a quantities string name the columns: i, j, S (N x 3 shifts), d, D (N x 3 vectors) and
-// P (N x 2 pairs (i, j), always a fresh array since i and j are stored apart).
+// The other arguments: cutoff (a number, a dict of species pairs or None) and max_bytes (None
+// or a whole number >= 0), each a ValueError naming it and what it got otherwise.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
-#include <memory>
 #include <string>
 #include <vector>
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
-#include <tricell/batch.hpp>
 #include <tricell/box.hpp>
 #include <tricell/neighbor_list.hpp>
 
@@ -92,6 +90,10 @@ Box box_from_rows(const py::handle& box, const py::handle& periodic, const char*
 /// "real", "species" or "periodic"; returns the converted array (float64, int32 or 3 bools).
 py::array checked_array(const py::handle& value, const std::string& name, const std::string& rule);
 
+/// repr(value), at most 80 characters, or its type's name when repr itself fails: what an
+/// argument got, for messages.
+std::string described(const py::handle& value);
+
 /// The cutoff argument of NeighborList and verify into `options`: a float (one cutoff), a dict
 /// {(species a, species b): cutoff} (a per-species-pair table) or None (per-atom radii, given
 /// elsewhere). ValueError for anything else.
@@ -100,18 +102,5 @@ void set_cutoff(const py::object& cutoff, NeighborOptions& options);
 /// The max_bytes argument: None is the library's default (NeighborOptions().max_bytes), else a
 /// whole number >= 0 (0: no limit). ValueError naming max_bytes for anything else.
 std::size_t max_bytes_argument(const py::object& value);
-
-/// Which NeighborList columns a quantities string needs; throws ValueError for other letters.
-Quantities parse_quantities(const std::string& letters);
-
-/// The columns of a computed list as numpy arrays in the order of `letters`: one array for a
-/// single letter, a tuple otherwise. With `owner` non-null the arrays (except P) are views whose
-/// base holds `owner`; otherwise they are copies.
-py::object pair_columns(const NeighborList& list, const std::string& letters,
-                        const std::shared_ptr<const NeighborList>& owner);
-
-/// The lists of a batch, always copied: a tuple of the per-structure pair offsets (int64,
-/// structures + 1) followed by the columns of `letters` over all structures.
-py::tuple batch_columns(const BatchList& list, const std::string& letters);
 
 } // namespace tricell::python
