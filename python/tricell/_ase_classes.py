@@ -2,8 +2,8 @@
 PrimitiveNeighborList, NewPrimitiveNeighborList), re-exported by tricell.ase.
 
 A build searches the pairs with d < (r_i + skin) + (r_j + skin) once, by tricell's per-atom
-radii search (tricell.ase.primitive_neighbor_list), and keeps them as the candidates, each
-atom's (index, offset) pairs in one flat table. Each later update() asks the library's
+radii search (tricell._ase_functions.primitive_neighbor_list), and keeps them as the
+candidates, each atom's (index, offset) pairs in one flat table. Each later update() asks the library's
 rebuild rule (tricell.DisplacementTracker, include/tricell/displacement.hpp) whether the
 candidates may miss a pair now; the margin of every pair is 2 * skin and the largest pair
 cutoff is 2 * max(r), so the rule rebuilds when some atom moved (minimum image, in the build's
@@ -33,6 +33,7 @@ offset) for both primitive classes, where ASE's NewPrimitiveNeighborList leaves 
 """
 import numpy as np
 
+from ._ase_functions import primitive_neighbor_list
 from ._tricell import DisplacementTracker
 
 __all__ = ["NeighborList", "PrimitiveNeighborList", "NewPrimitiveNeighborList"]
@@ -160,8 +161,6 @@ class _CandidateList:
     # -- the build -----------------------------------------------------------------------------
 
     def _build(self, pbc, cell, positions, cartesian, numbers):
-        from .ase import primitive_neighbor_list
-
         first, second, offsets = primitive_neighbor_list(
             "ijS", pbc, cell, cartesian, self.cutoffs, self_interaction=self.self_interaction)
         half = self._half_mask(first, second, offsets, pbc, cell, cartesian)
