@@ -1,12 +1,12 @@
 #include "tricell/verlet.hpp"
 
 #include "detail/candidate_radius.hpp"
+#include "detail/verlet_filter.hpp"
 #include "search/distance_kernel.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <numeric>
-#include <type_traits>
 
 #include "tricell/error.hpp"
 
@@ -177,63 +177,45 @@ void VerletList::build(const Box& box, PointsView positions) {
 
 namespace {
 
-// Output columns of a refresh, written through raw pointers into arrays sized for every
-// candidate (PairArray growth does not zero-fill), trimmed to the pairs found at the end.
-struct RefreshColumns {
-    std::uint32_t* i;
-    std::uint32_t* j;
-    std::int32_t* shifts;
-    double* distances;
-    double* vectors;
-};
+// The serial list's candidates for the refresh filter (detail/verlet_filter.hpp): atom j at its
+// unwrapped position x~_j = x_j + H m_j plus the candidate's lattice vector H S0, so that
+// D = (x~_j + H S0) - x~_i; written as (i, j) and S = S0 + m_j - m_i, relative to the caller's
+// positions. The output columns are sized for every candidate (PairArray growth does not
+// zero-fill) and trimmed to the pairs found at the end.
+template <bool Shifts> struct SerialCandidates {
+    const std::uint32_t* cand_j;
+    const std::uint32_t* cand_shift; // index into the shift tables
+    const double* x;                 // unwrapped positions
+    const double* shift_vectors;
+    const std::int32_t* shift_table;
+    const std::int32_t* jump; // m, per atom
+    std::uint32_t* out_i;
+    std::uint32_t* out_j;
+    std::int32_t* out_shifts;
 
-// The filter over all candidates, grouped by i. Branch-free: every candidate is written at the
-// next free slot and the slot advances only for a pair within the cutoff, so a hit rate near
-// 70 % costs no mispredicted branches. Returns the number of pairs.
-template <bool Shifts, bool Distances, bool Vectors>
-std::size_t filter_candidates(std::size_t n, const std::size_t* offsets,
-                              const std::uint32_t* cand_j, const std::uint32_t* cand_shift,
-                              const double* x, const double* shift_vectors,
-                              const std::int32_t* shift_table, const std::int32_t* jump,
-                              double cutoff_sq, std::size_t* pair_offsets, RefreshColumns out) {
-    std::size_t count = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-        pair_offsets[i] = count;
-        // D = (x~_j + H S0) - x~_i, with x~ = x + H m the unwrapped positions.
-        const double xi = x[3 * i];
-        const double yi = x[3 * i + 1];
-        const double zi = x[3 * i + 2];
-        const std::size_t end = offsets[i + 1];
-        for (std::size_t p = offsets[i]; p < end; ++p) {
-            const std::size_t j = cand_j[p];
-            const std::size_t e = cand_shift[p];
-            const double dx = x[3 * j] + shift_vectors[3 * e] - xi;
-            const double dy = x[3 * j + 1] + shift_vectors[3 * e + 1] - yi;
-            const double dz = x[3 * j + 2] + shift_vectors[3 * e + 2] - zi;
-            const double d_sq = dx * dx + dy * dy + dz * dz;
-            out.i[count] = std::uint32_t(i);
-            out.j[count] = std::uint32_t(j);
-            if constexpr (Shifts) {
-                // S = S0 + m_j - m_i, relative to the caller's positions.
-                for (std::size_t k = 0; k < 3; ++k) {
-                    out.shifts[3 * count + k] =
-                        shift_table[3 * e + k] + jump[3 * j + k] - jump[3 * i + k];
-                }
+    detail::Point origin(std::size_t i) const { return {x[3 * i], x[3 * i + 1], x[3 * i + 2]}; }
+
+    detail::Point partner(std::size_t p) const {
+        const std::size_t j = cand_j[p];
+        const std::size_t e = cand_shift[p];
+        return {x[3 * j] + shift_vectors[3 * e], x[3 * j + 1] + shift_vectors[3 * e + 1],
+                x[3 * j + 2] + shift_vectors[3 * e + 2]};
+    }
+
+    void write(std::size_t slot, std::size_t i, std::size_t p) const {
+        // Every read before the first write: a write through out_j may alias cand_shift.
+        const std::size_t j = cand_j[p];
+        const std::size_t e = cand_shift[p];
+        out_i[slot] = std::uint32_t(i);
+        out_j[slot] = std::uint32_t(j);
+        if constexpr (Shifts) {
+            for (std::size_t k = 0; k < 3; ++k) {
+                out_shifts[3 * slot + k] =
+                    shift_table[3 * e + k] + jump[3 * j + k] - jump[3 * i + k];
             }
-            if constexpr (Distances) {
-                out.distances[count] = std::sqrt(d_sq);
-            }
-            if constexpr (Vectors) {
-                out.vectors[3 * count] = dx;
-                out.vectors[3 * count + 1] = dy;
-                out.vectors[3 * count + 2] = dz;
-            }
-            count += d_sq < cutoff_sq ? 1 : 0;
         }
     }
-    pair_offsets[n] = count;
-    return count;
-}
+};
 
 } // namespace
 
@@ -260,46 +242,17 @@ void VerletList::refresh(const Box& box) {
     columns.distances.resize(q.distances ? capacity : 0);
     columns.vectors.resize(q.vectors ? 3 * capacity : 0);
     columns.offsets.resize(n + 1);
-    const RefreshColumns out{columns.i.data(), columns.j.data(), columns.shifts.data(),
-                             columns.distances.data(), columns.vectors.data()};
     const double cutoff_sq = detail::strict_threshold_sq(options_.neighbors.cutoff);
-    auto run = [&](auto shifts, auto distances, auto vectors) {
-        return filter_candidates<decltype(shifts)::value, decltype(distances)::value,
-                                 decltype(vectors)::value>(
-            n, candidate_offsets_.data(), candidate_j_.data(), candidate_shift_.data(),
-            unwrapped_.data(), shift_vectors_.data(), shift_table_.data(), jumps_.data(), cutoff_sq,
-            columns.offsets.data(), out);
-    };
-    using Yes = std::true_type;
-    using No = std::false_type;
-    std::size_t count = 0;
-    const int which = (q.shifts ? 4 : 0) + (q.distances ? 2 : 0) + (q.vectors ? 1 : 0);
-    switch (which) {
-    case 0:
-        count = run(No{}, No{}, No{});
-        break;
-    case 1:
-        count = run(No{}, No{}, Yes{});
-        break;
-    case 2:
-        count = run(No{}, Yes{}, No{});
-        break;
-    case 3:
-        count = run(No{}, Yes{}, Yes{});
-        break;
-    case 4:
-        count = run(Yes{}, No{}, No{});
-        break;
-    case 5:
-        count = run(Yes{}, No{}, Yes{});
-        break;
-    case 6:
-        count = run(Yes{}, Yes{}, No{});
-        break;
-    default:
-        count = run(Yes{}, Yes{}, Yes{});
-        break;
-    }
+    const std::size_t count =
+        detail::with_columns(q, [&](auto shifts, auto distances, auto vectors) {
+            const SerialCandidates<decltype(shifts)::value> candidates{
+                candidate_j_.data(),   candidate_shift_.data(), unwrapped_.data(),
+                shift_vectors_.data(), shift_table_.data(),     jumps_.data(),
+                columns.i.data(),      columns.j.data(),        columns.shifts.data()};
+            return detail::filter_candidates<decltype(distances)::value, decltype(vectors)::value>(
+                candidates, n, candidate_offsets_.data(), cutoff_sq, columns.distances.data(),
+                columns.vectors.data(), columns.offsets.data());
+        });
     columns.i.resize(count);
     columns.j.resize(count);
     columns.shifts.resize(q.shifts ? 3 * count : 0);

@@ -1,5 +1,6 @@
 // The distributed Verlet list (tricell/mpi/verlet.hpp): the rebuild vote, the build of oriented
-// candidates (the list's rule applied once per build) and the filter of each update().
+// candidates (the list's rule applied once per build) and the filter of each update() (the one
+// both Verlet lists run, detail/verlet_filter.hpp).
 #include "tricell/mpi/verlet.hpp"
 
 #include <cmath>
@@ -9,6 +10,7 @@
 
 #include "collective.hpp"
 #include "detail/candidate_radius.hpp"
+#include "detail/verlet_filter.hpp"
 #include "pair_map.hpp"
 #include "search/distance_kernel.hpp"
 #include "tricell/error.hpp"
@@ -17,49 +19,42 @@ namespace tricell::mpi {
 
 namespace {
 
-// The filter over the oriented candidates, grouped by owned i. Branch-free: every candidate is
-// written at the next free slot, which advances only for a pair within the cutoff.
-template <bool Shifts, bool Distances, bool Vectors>
-std::size_t filter_candidates(std::size_t owned, const std::size_t* offsets,
-                              const std::uint32_t* cand_b, const double* y,
-                              const std::uint64_t* ids, const std::int32_t* images,
-                              double cutoff_sq, detail::ColumnPointers out) {
-    std::size_t count = 0;
-    for (std::size_t a = 0; a < owned; ++a) {
-        const double xa = y[3 * a];
-        const double ya = y[3 * a + 1];
-        const double za = y[3 * a + 2];
-        const std::uint64_t id = ids[a];
-        const std::size_t end = offsets[a + 1];
-        for (std::size_t p = offsets[a]; p < end; ++p) {
-            const std::size_t b = cand_b[p];
-            const double dx = y[3 * b] - xa;
-            const double dy = y[3 * b + 1] - ya;
-            const double dz = y[3 * b + 2] - za;
-            const double d_sq = dx * dx + dy * dy + dz * dz;
-            out.owned[count] = std::uint32_t(a);
-            out.local_j[count] = std::uint32_t(b);
-            out.i[count] = id;
-            out.j[count] = ids[b];
-            if constexpr (Shifts) {
-                // S = c_a - c_b (halo.hpp), relative to the owners' caller positions.
-                for (std::size_t k = 0; k < 3; ++k) {
-                    out.shifts[3 * count + k] = images[3 * a + k] - images[3 * b + k];
-                }
+// The distributed list's candidates for the refresh filter (detail/verlet_filter.hpp): the
+// oriented pairs (owned a, local b) of the build, b at its image among the halo's local
+// positions, so that D = y_b - y_a; written as (a, b), their global ids and S = c_a - c_b
+// (halo.hpp), relative to the owners' caller positions.
+template <bool Shifts> struct OwnedCandidates {
+    const std::uint32_t* cand_b;
+    const double* y;
+    const std::uint64_t* ids;
+    const std::int32_t* images;
+    detail::ColumnPointers out;
+
+    tricell::detail::Point origin(std::size_t a) const {
+        return {y[3 * a], y[3 * a + 1], y[3 * a + 2]};
+    }
+
+    tricell::detail::Point partner(std::size_t p) const {
+        const std::size_t b = cand_b[p];
+        return {y[3 * b], y[3 * b + 1], y[3 * b + 2]};
+    }
+
+    void write(std::size_t slot, std::size_t a, std::size_t p) const {
+        // Every read before the first write: a write through out.i may alias ids.
+        const std::size_t b = cand_b[p];
+        const std::uint64_t id_a = ids[a];
+        const std::uint64_t id_b = ids[b];
+        out.owned[slot] = std::uint32_t(a);
+        out.local_j[slot] = std::uint32_t(b);
+        out.i[slot] = id_a;
+        out.j[slot] = id_b;
+        if constexpr (Shifts) {
+            for (std::size_t k = 0; k < 3; ++k) {
+                out.shifts[3 * slot + k] = images[3 * a + k] - images[3 * b + k];
             }
-            if constexpr (Distances) {
-                out.distances[count] = std::sqrt(d_sq);
-            }
-            if constexpr (Vectors) {
-                out.vectors[3 * count] = dx;
-                out.vectors[3 * count + 1] = dy;
-                out.vectors[3 * count + 2] = dz;
-            }
-            count += d_sq < cutoff_sq ? 1 : 0;
         }
     }
-    return count;
-}
+};
 
 void add_exchange(const Halo& halo, Traffic& to) {
     to.add(std::uint64_t(halo.stats().messages_sent), std::uint64_t(halo.stats().bytes_sent));
@@ -185,19 +180,16 @@ void DistributedVerletList::refresh() {
     const detail::ColumnPointers columns =
         detail::resize_columns(out, capacity, q.shifts, q.distances, q.vectors);
     const double cutoff_sq = tricell::detail::strict_threshold_sq(options_.neighbors.cutoff);
-    auto run = [&](auto shifts, auto distances, auto vectors) {
-        return filter_candidates<decltype(shifts)::value, decltype(distances)::value,
-                                 decltype(vectors)::value>(
-            halo_.owned_count(), candidate_offsets_.data(), candidate_b_.data(),
-            halo_.positions().data(), halo_.ids().data(), halo_.images().data(), cutoff_sq,
-            columns);
-    };
-    // One instantiation per set of columns (no branch per pair).
-    const std::size_t n = detail::with_flag(q.shifts, [&](auto s) {
-        return detail::with_flag(q.distances, [&](auto d) {
-            return detail::with_flag(q.vectors, [&](auto v) { return run(s, d, v); });
+    const std::size_t n =
+        tricell::detail::with_columns(q, [&](auto shifts, auto distances, auto vectors) {
+            const OwnedCandidates<decltype(shifts)::value> candidates{
+                candidate_b_.data(), halo_.positions().data(), halo_.ids().data(),
+                halo_.images().data(), columns};
+            return tricell::detail::filter_candidates<decltype(distances)::value,
+                                                      decltype(vectors)::value>(
+                candidates, halo_.owned_count(), candidate_offsets_.data(), cutoff_sq,
+                columns.distances, columns.vectors, nullptr);
         });
-    });
     detail::resize_columns(out, n, q.shifts, q.distances, q.vectors);
 }
 
