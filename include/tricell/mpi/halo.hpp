@@ -137,6 +137,8 @@ class TRICELL_MPI_API Halo {
     const HaloStats& stats() const { return stats_; }
 
   private:
+    // build() and the selection are lib/mpi/halo_selection.cpp, every exchange (update(),
+    // forward(), reverse_sum()) lib/mpi/halo_exchange.cpp.
     // One ghost to send: owned atom index and translation.
     struct Send {
         std::uint32_t atom;
