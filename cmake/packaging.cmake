@@ -1,6 +1,8 @@
 # Install rules (the libraries, their headers, the `tricell` command) and package configuration,
 # so that find_package(tricell CONFIG), add_subdirectory() and FetchContent all work. The
 # build-tree export is always generated.
+# tricell is BSD-3-Clause: the install puts LICENSE into the documentation directory
+# (share/doc/tricell), and the package and pkg-config files name the licence.
 include(CMakePackageConfigHelpers)
 include(GNUInstallDirs)
 
@@ -70,6 +72,7 @@ if(TRICELL_INSTALL)
             endif()
         endforeach()
     endif()
+    install(FILES "${PROJECT_SOURCE_DIR}/LICENSE" DESTINATION "${CMAKE_INSTALL_DOCDIR}")
     install(EXPORT tricell-targets NAMESPACE tricell::
         DESTINATION "${TRICELL_CONFIG_DIR}")
     install(FILES
