@@ -6,12 +6,16 @@ PyTorch op when PyTorch is found), builds it, and installs CMake's `python` comp
 setuptools' build directory. So the files of the package are the ones python/CMakeLists.txt
 lists, whichever way it is installed, and the version is CMake's project version.
 
-The build directory is build-pip/ in the repository, or $TRICELL_PIP_BUILD_DIR; a second
-build there is incremental. $CMAKE_BUILD_PARALLEL_LEVEL sets the parallel jobs (default: every
-core).
+pybind11 comes from the pybind11 Python package when it is importable (a build requirement,
+so an isolated build has it), else from CMake's own search. $CMAKE_ARGS adds configure options,
+as for scikit-build: CMAKE_ARGS=-DTRICELL_BUILD_IO=OFF builds without gemmi and spglib (and so
+without tricell.read). The build directory is build-pip/ in the source tree, or
+$TRICELL_PIP_BUILD_DIR; a second build there is incremental. $CMAKE_BUILD_PARALLEL_LEVEL sets
+the parallel jobs (default: every core).
 """
 import os
 import re
+import shlex
 import shutil
 import subprocess
 import sys
@@ -22,6 +26,14 @@ from setuptools.command.build_ext import build_ext
 
 ROOT = Path(__file__).resolve().parent
 BUILD_BASE = Path(os.environ.get("TRICELL_PIP_BUILD_DIR", ROOT / "build-pip")).resolve()
+
+
+def pybind11_options():
+    try:
+        import pybind11
+    except ImportError:
+        return []
+    return [f"-Dpybind11_DIR={pybind11.get_cmake_dir()}"]
 
 
 def cmake_project_version():
@@ -48,7 +60,8 @@ class CMakeBuild(build_ext):
                         "-DTRICELL_BUILD_TESTS=OFF", "-DTRICELL_BUILD_EXAMPLES=OFF",
                         "-DTRICELL_BUILD_CLI=OFF",
                         "-DTRICELL_BUILD_BENCHMARKS=OFF", "-DTRICELL_BUILD_MPI=OFF",
-                        "-DTRICELL_BUILD_FORTRAN=OFF", "-DTRICELL_INSTALL=OFF"],
+                        "-DTRICELL_BUILD_FORTRAN=OFF", "-DTRICELL_INSTALL=OFF",
+                        *pybind11_options(), *shlex.split(os.environ.get("CMAKE_ARGS", ""))],
                        check=True)
         subprocess.run(["cmake", "--build", str(cmake_dir)], check=True)
         subprocess.run(["cmake", "--install", str(cmake_dir), "--component", "python"],
