@@ -17,6 +17,7 @@ packages=(
     pybind11-dev python3-dev python3-pytest   # the Python module and its tests
     python3-venv python3-setuptools python3-wheel python3-build   # the sdist, the wheel, a venv
     python3-pybind11           # the wheel's build requirement pybind11, as a Python package
+    python3-mdanalysis         # tricell.mdanalysis and its comparisons with MDAnalysis
     python3-torch libtorch-dev   # tricell.torch (the PyTorch op library) and its tests
     libopenmpi-dev openmpi-bin # tricell::mpi and its multi-rank tests
     clang-14 libclang-rt-14-dev   # libFuzzer harnesses
