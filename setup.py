@@ -69,6 +69,9 @@ class CMakeBuild(build_ext):
 
 
 BUILD_BASE.mkdir(parents=True, exist_ok=True)
+# setuptools adds the files listed in an existing egg-info's SOURCES.txt to the sdist: a file
+# since dropped from MANIFEST.in would stay. Each run starts without that list.
+(BUILD_BASE / "tricell.egg-info" / "SOURCES.txt").unlink(missing_ok=True)
 setup(
     version=cmake_project_version(),
     packages=[],
