@@ -122,42 +122,26 @@ def random_case(seed, kind, dtype):
 
 @pytest.mark.parametrize("dtype", [np.float32, np.float64])
 @pytest.mark.parametrize("kind", BOX_KINDS)
-def test_capped_distance_matches_mdanalysis_and_brute_force(kind, dtype):
+@pytest.mark.parametrize("function", ["capped_distance", "self_capped_distance"])
+def test_matches_mdanalysis_and_brute_force(function, kind, dtype):
+    within_one_set = function == "self_capped_distance"
     for seed in range(16):
         reference, configuration, box, max_cutoff, min_cutoff = random_case(seed, kind, dtype)
-        context = f"seed {seed}, box {kind}, {np.dtype(dtype).name}"
-        pairs, distances = tm.capped_distance(reference, configuration, max_cutoff, min_cutoff,
-                                              box)
+        context = f"{function}, seed {seed}, box {kind}, {np.dtype(dtype).name}"
+        sets = (reference,) if within_one_set else (reference, configuration)
+        arguments = (*sets, max_cutoff, min_cutoff, box)
+        pairs, distances = getattr(tm, function)(*arguments)
         mine = as_dict(pairs, distances)
-        theirs = as_dict(*mda_distances.capped_distance(reference, configuration, max_cutoff,
-                                                        min_cutoff, box, method="bruteforce"))
+        if within_one_set:
+            assert all(i < j for i, j in mine), f"{context}: a pair with i >= j"
+        theirs = as_dict(*getattr(mda_distances, function)(*arguments, method="bruteforce"))
         assert_same_pairs(mine, theirs, [max_cutoff, min_cutoff], TOLERANCE, context)
-        exact = {key: d for key, d in brute_force(reference, configuration, box,
-                                                  max_cutoff).items()
+        exact = {key: d for key, d in brute_force(reference, sets[-1], box, max_cutoff,
+                                                  self_pairs=within_one_set).items()
                  if min_cutoff is None or d > min_cutoff}
         assert_same_pairs(mine, exact, [max_cutoff, min_cutoff], 1e-9, context + " (float64)")
-        np.testing.assert_array_equal(pairs, tm.capped_distance(
-            reference, configuration, max_cutoff, min_cutoff, box, return_distances=False))
-
-
-@pytest.mark.parametrize("dtype", [np.float32, np.float64])
-@pytest.mark.parametrize("kind", BOX_KINDS)
-def test_self_capped_distance_matches_mdanalysis_and_brute_force(kind, dtype):
-    for seed in range(16):
-        reference, _, box, max_cutoff, min_cutoff = random_case(seed, kind, dtype)
-        context = f"seed {seed}, box {kind}, {np.dtype(dtype).name}"
-        pairs, distances = tm.self_capped_distance(reference, max_cutoff, min_cutoff, box)
-        mine = as_dict(pairs, distances)
-        assert all(i < j for i, j in mine), f"{context}: a pair with i >= j"
-        theirs = as_dict(*mda_distances.self_capped_distance(reference, max_cutoff, min_cutoff,
-                                                             box, method="bruteforce"))
-        assert_same_pairs(mine, theirs, [max_cutoff, min_cutoff], TOLERANCE, context)
-        exact = {key: d for key, d in brute_force(reference, reference, box, max_cutoff,
-                                                  self_pairs=True).items()
-                 if min_cutoff is None or d > min_cutoff}
-        assert_same_pairs(mine, exact, [max_cutoff, min_cutoff], 1e-9, context + " (float64)")
-        np.testing.assert_array_equal(pairs, tm.self_capped_distance(
-            reference, max_cutoff, min_cutoff, box, return_distances=False))
+        np.testing.assert_array_equal(pairs, getattr(tm, function)(*arguments,
+                                                                   return_distances=False))
 
 
 @pytest.mark.parametrize("kind", ["orthogonal", "triclinic"])
