@@ -11,13 +11,13 @@ computed by tricell, and install() / uninstall(), which route MDAnalysis's own a
 The signatures and results are MDAnalysis 2.4's: pairs (n_pairs x 2, intp) of indices into
 `reference` and `configuration` (or twice into `reference`, i < j, for the self search) whose
 minimum-image distance d satisfies min_cutoff < d <= max_cutoff, and the distances (float64);
-`box` is [a, b, c, alpha, beta, gamma] in MDAnalysis's frame (a along x, b in the xy plane;
-the matrix is MDAnalysis's own triclinic_vectors, in float64) or None for no periodicity;
-positions are arrays of shape (n, 3) or (3,), or AtomGroups. The order of the pairs is the
-search's (the same for the same input; MDAnalysis's order, too, depends on the method its
-automatic choice takes). `method` is accepted and ignored: every method is tricell's search. FastNS(cutoff, coords, box, pbc=True) has
-search(search_coords) and self_search(), whose results have get_pairs() and
-get_pair_distances(), as MDAnalysis.lib.nsgrid.FastNS.
+`box` is [a, b, c, alpha, beta, gamma] in MDAnalysis's frame (a along x, b in the xy plane; the
+matrix is MDAnalysis's own triclinic_vectors, in float64) or None for no periodicity; positions
+are arrays of shape (n, 3) or (3,), or AtomGroups. The order of the pairs is the search's (the
+same for the same input; MDAnalysis's order, too, depends on the method its automatic choice
+takes). `method` is accepted and ignored: every method is tricell's search. FastNS(cutoff,
+coords, box, pbc=True) has search(search_coords) and self_search(), whose results have
+get_pairs() and get_pair_distances(), as MDAnalysis.lib.nsgrid.FastNS.
 
 Two things differ from MDAnalysis, both on purpose: any cutoff works, also beyond half the box
 (where FastNS refuses; the distance is still the minimum image's), and the distances are
@@ -101,27 +101,26 @@ def _method(value):
         raise ValueError(f"method must be None or one of {', '.join(_METHODS)} (got {value!r})")
 
 
-def _box(value, name="box"):
+def _box(value):
     """(matrix with the lattice vectors as rows, periodic) for [a, b, c, alpha, beta, gamma] or
     None: MDAnalysis's own matrix, in float64; the identity, not periodic, for None."""
     if value is None:
         return np.eye(3), False
-    box = _as_array(value, name, "real")
+    box = _as_array(value, "box", "real")
     if box.shape != (6,):
-        raise ValueError(f"{name} must be None or [a, b, c, alpha, beta, gamma], six numbers "
+        raise ValueError("box must be None or [a, b, c, alpha, beta, gamma], six numbers "
                          f"(got shape {box.shape})")
     if not np.isfinite(box).all():
-        raise ValueError(f"{name} must hold finite numbers (got {box.tolist()})")
+        raise ValueError(f"box must hold finite numbers (got {box.tolist()})")
     if not (box[:3] > 0).all():
-        raise ValueError(f"{name} lengths a, b, c must be > 0 (got {box[:3].tolist()})")
+        raise ValueError(f"box lengths a, b, c must be > 0 (got {box[:3].tolist()})")
     if not ((box[3:] > 0) & (box[3:] < 180)).all():
-        raise ValueError(f"{name} angles alpha, beta, gamma must be in (0, 180) degrees "
+        raise ValueError("box angles alpha, beta, gamma must be in (0, 180) degrees "
                          f"(got {box[3:].tolist()})")
     with np.errstate(invalid="ignore"):  # its square root of a negative number, for such angles
         matrix = _triclinic_vectors(box, dtype=np.float64)
     if not matrix.any():  # MDAnalysis's answer for angles that close no cell
-        raise ValueError(f"{name} angles alpha, beta, gamma = {box[3:].tolist()} do not form a "
-                         f"cell")
+        raise ValueError(f"box angles alpha, beta, gamma = {box[3:].tolist()} do not form a cell")
     return matrix, True
 
 
