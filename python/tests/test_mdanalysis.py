@@ -7,15 +7,11 @@ a small window of a cutoff may differ from tricell's float64 ones: the compariso
 skip pairs within TOLERANCE of max_cutoff or min_cutoff, and compare distances to TOLERANCE. The
 comparisons with the float64 brute force skip only pairs within 1e-9 of a cutoff.
 """
-import os
-import re
 import subprocess
 import sys
 
 import numpy as np
 import pytest
-
-from conftest import SOURCE_DIR
 
 MDAnalysis = pytest.importorskip("MDAnalysis")
 from MDAnalysis.analysis.rdf import InterRDF  # noqa: E402
@@ -437,20 +433,3 @@ def test_interrdf_in_a_triclinic_box_differs_only_by_rounding_at_bin_edges():
         near_edges += int((np.abs(d[:, None] - edges[None, :]) < TOLERANCE).any(axis=1).sum())
     assert np.abs(mine.count - theirs.count).sum() <= 2 * near_edges
     assert theirs.count.sum() > 1000
-
-
-def python_example(page, heading):
-    """The ```python block under `heading` in docs/PAGE."""
-    text = open(os.path.join(SOURCE_DIR, "docs", page), encoding="utf-8").read()
-    section = text.split(f"\n## {heading}\n", 1)[1].split("\n## ", 1)[0]
-    blocks = re.findall(r"```python\n(.*?)```", section, re.S)
-    assert blocks, f"no python example under '{heading}' in docs/{page}"
-    return blocks[0]
-
-
-def test_the_example_of_docs_python_md_runs():
-    namespace = {}
-    exec(compile(python_example("python.md", "Drop-in for MDAnalysis"), "python.md", "exec"),
-         namespace)
-    assert mda_distances.capped_distance is not tm.capped_distance, "the example left it installed"
-    assert len(namespace["pairs"]) > 0 and namespace["rdf"].results.count.sum() > 0

@@ -3,7 +3,7 @@
 Every ```python block of the page (also one indented in a list) is one test, named after the
 heading it sits under and its place there. A block's HARNESS entry gives it the names the page
 takes as given (`points`, `atoms`, `structure`, ...), runs it, then checks what it computed
-against ASE, pymatgen or the definition of a pair; a block without an entry, or an entry without
+against ASE, pymatgen, MDAnalysis or the definition of a pair; a block without an entry, or an entry without
 a block, fails. The PyTorch block is skipped, with the reason, where PyTorch (or the op library,
 built only with libtorch) is missing.
 """
@@ -148,6 +148,30 @@ def check_pymatgen(ns):
     assert key(ours) == key(theirs)
 
 
+def check_mdanalysis(ns):
+    import MDAnalysis.lib.distances
+    from MDAnalysis.analysis.rdf import InterRDF
+
+    assert MDAnalysis.lib.distances.capped_distance.__module__ == "MDAnalysis.lib.distances", \
+        "uninstall() gives MDAnalysis its own function back"
+    positions, box = ns["positions"].astype(np.float64), np.asarray(ns["box"][:3], np.float64)
+    d = positions[None, :, :] - positions[:10, None, :]
+    d = np.linalg.norm(d - box * np.round(d / box), axis=2)  # a cube: the nearest image
+    expected = set(zip(*np.nonzero(d <= 6.0 - 1e-9)))
+    near = set(zip(*np.nonzero(np.abs(d - 6.0) <= 1e-9)))  # either way within rounding
+    found = set(map(tuple, ns["pairs"].tolist()))
+    assert expected <= found <= expected | near, "FastNS(...).search: the pairs with d <= 6"
+    np.testing.assert_allclose(ns["distances"], d[tuple(ns["pairs"].T)], atol=1e-12)
+    theirs = InterRDF(ns["u"].atoms, ns["u"].atoms, nbins=75, range=(0.0, 15.0)).run().results
+    # MDAnalysis's float32 distances may put a pair within rounding of a bin edge next door.
+    d = ns["capped_distance"](positions, positions, 15.0, box=ns["box"])[1]
+    edges = theirs.edges
+    k = np.clip(np.searchsorted(edges, d), 1, len(edges) - 1)
+    near_edges = np.count_nonzero(np.minimum(d - edges[k - 1], edges[k] - d) < 1e-4)
+    assert np.abs(ns["rdf"].results.count - theirs.count).sum() <= 2 * near_edges
+    assert theirs.count.sum() > 10000
+
+
 def torch_inputs():
     try:
         import tricell.torch  # noqa: F401
@@ -177,6 +201,7 @@ HARNESS = {
     ("Drop-in for ASE", 1): (lambda: dict(atoms=silicon()), check_ase_function),
     ("Drop-in for ASE", 2): (ase_class_inputs, check_ase_class),
     ("Drop-in for pymatgen", 1): (pymatgen_inputs, check_pymatgen),
+    ("Drop-in for MDAnalysis", 1): (dict, check_mdanalysis),
     ("PyTorch", 1): (torch_inputs, check_torch),
 }
 
