@@ -1,4 +1,4 @@
-// Backend timings and the fit of the grid-vs-octree cost model (lib/cost_model/cost_model.hpp).
+// Backend timings and the fit of the grid-vs-octree cost model (lib/policy/cost_model.hpp).
 // A plain timing program, not a test; run it pinned to one core:
 //     taskset -c 0 build/benchmarks/backend_bench [uniform|mixture|droplet|liquid|leaf|all]
 //
@@ -28,7 +28,7 @@
 
 #include <tricell/tricell.hpp>
 
-#include "cost_model/cost_model.hpp"
+#include "policy/cost_model.hpp"
 
 namespace {
 

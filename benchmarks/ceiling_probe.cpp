@@ -33,7 +33,7 @@
 #include <string>
 #include <vector>
 
-#include "search/distance_kernel.hpp"
+#include "scan/distance_kernel.hpp"
 #include <tricell/cell_list.hpp>
 #include <tricell/grid.hpp>
 #include <tricell/io/structure.hpp>

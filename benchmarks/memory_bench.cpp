@@ -27,7 +27,7 @@
 #include <tricell/error.hpp>
 #include <tricell/neighbor_list.hpp>
 
-#include "search/list_limits.hpp"
+#include "policy/list_limits.hpp"
 
 namespace {
 

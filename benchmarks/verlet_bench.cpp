@@ -19,7 +19,7 @@
 #include <Eigen/Dense>
 #include <benchmark/benchmark.h>
 
-#include "cost_model/cost_model.hpp"
+#include "policy/cost_model.hpp"
 #include "lj_system.hpp"
 #include <tricell/verlet.hpp>
 

@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "cost_model/cost_model.hpp"
+#include "policy/cost_model.hpp"
 #include <tricell/neighbor_list.hpp>
 
 namespace {

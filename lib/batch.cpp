@@ -8,8 +8,8 @@
 #include <thread>
 
 #include "detail/parallel.hpp"
-#include "search/list_limits.hpp"
-#include "search/policy.hpp"
+#include "policy/list_limits.hpp"
+#include "policy/policy.hpp"
 #include "tricell/error.hpp"
 
 namespace tricell {

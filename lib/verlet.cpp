@@ -2,7 +2,7 @@
 
 #include "detail/candidate_radius.hpp"
 #include "detail/verlet_filter.hpp"
-#include "search/distance_kernel.hpp"
+#include "scan/distance_kernel.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -6,7 +6,7 @@
 // cutoff rule or threads; the shared part never knows how cells are stored.
 //
 // Adding a backend: a file here and one line of the table in lib/search/registry.cpp; the
-// automatic choice (lib/search/policy.cpp) picks it only once the cost model knows its cost.
+// automatic choice (lib/policy/policy.cpp) picks it only once the cost model knows its cost.
 #pragma once
 
 #include <cstddef>
@@ -16,7 +16,7 @@
 
 #include <Eigen/Core>
 
-#include "search/candidate_scan.hpp"
+#include "scan/candidate_scan.hpp"
 #include "tricell/box.hpp"
 #include "tricell/error.hpp"
 #include "tricell/neighbor_list.hpp"

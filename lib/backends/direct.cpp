@@ -24,7 +24,7 @@
 #include <limits>
 
 #include "backends/backend.hpp"
-#include "cost_model/cost_model.hpp"
+#include "policy/cost_model.hpp"
 
 namespace tricell::detail {
 

@@ -1,6 +1,6 @@
 #include "backends/grid_neighbourhood.hpp"
 
-#include "search/policy.hpp"
+#include "policy/policy.hpp"
 
 namespace tricell::detail {
 

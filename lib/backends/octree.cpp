@@ -36,7 +36,7 @@
 #include <cmath>
 
 #include "backends/backend.hpp"
-#include "cost_model/cost_model.hpp"
+#include "policy/cost_model.hpp"
 #include "tricell/stencil.hpp"
 
 namespace tricell::detail {

@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "collective.hpp"
-#include "cost_model/cost_model.hpp"
+#include "policy/cost_model.hpp"
 #include "tricell/error.hpp"
 
 namespace tricell::mpi {

@@ -12,7 +12,7 @@
 #include "detail/candidate_radius.hpp"
 #include "detail/verlet_filter.hpp"
 #include "pair_map.hpp"
-#include "search/distance_kernel.hpp"
+#include "scan/distance_kernel.hpp"
 #include "tricell/error.hpp"
 
 namespace tricell::mpi {

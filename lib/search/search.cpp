@@ -17,14 +17,14 @@
 
 #include <Eigen/LU>
 
-#include "cost_model/cost_model.hpp"
+#include "policy/cost_model.hpp"
 #include "detail/parallel.hpp"
-#include "search/frame.hpp"
-#include "search/list_limits.hpp"
+#include "frame/search_frame.hpp"
+#include "policy/list_limits.hpp"
 #include "search/options.hpp"
-#include "search/ordered_output.hpp"
-#include "search/output_order.hpp"
-#include "search/policy.hpp"
+#include "output/unit_ordered_batches.hpp"
+#include "output/grouped_and_sorted.hpp"
+#include "policy/policy.hpp"
 #include "search/search_state.hpp"
 #include "tricell/error.hpp"
 

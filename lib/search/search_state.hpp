@@ -8,7 +8,7 @@
 #include <Eigen/Core>
 
 #include "backends/backend.hpp"
-#include "search/candidate_scan.hpp"
+#include "scan/candidate_scan.hpp"
 #include "search/registry.hpp"
 #include "tricell/neighbor_list.hpp"
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "search/half_orientation.hpp"
+#include "scan/half_orientation.hpp"
 #include "tricell/box.hpp"
 #include "tricell/neighbor_list.hpp"
 #include "tricell/types.hpp"
@@ -46,7 +46,7 @@ struct ReferencePairs {
 ReferencePairs reference_pairs(const Box& box, PointsView positions, const NeighborOptions& options,
                                const PairCutoff& cutoff);
 
-/// Whether (i, j, S) is the orientation of a half list (search/half_orientation.hpp).
+/// Whether (i, j, S) is the orientation of a half list (scan/half_orientation.hpp).
 inline bool canonical_orientation(const PairKey& key) {
     return half_orientation(key[0], key[1], key[2], key[3], key[4]);
 }

@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "cost_model/cost_model.hpp"
+#include "policy/cost_model.hpp"
 #include "mpi_support.hpp"
 #include "support/expect_throw_msg.hpp"
 #include "tricell/error.hpp"

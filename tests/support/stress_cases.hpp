@@ -1,5 +1,5 @@
 // Cases for the concurrency and fork tests: dense random triclinic systems below and above the
-// size at which compute_neighbors() reuses its thread-local search (lib/search/policy.hpp), with
+// size at which compute_neighbors() reuses its thread-local search (lib/policy/policy.hpp), with
 // option sets that vary the backend, the orders, the quantities and the thread count; and a
 // bit-for-bit comparison of two lists (memcmp of every column, so -0.0 and NaN patterns count).
 #pragma once

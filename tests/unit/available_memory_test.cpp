@@ -13,7 +13,7 @@
 
 #include <unistd.h>
 
-#include "search/available_memory.hpp"
+#include "policy/available_memory.hpp"
 #include "tricell/neighbor_list.hpp"
 
 using tricell::detail::cgroup_memory_limit;

@@ -1,7 +1,7 @@
 // Many threads searching at once through the C++ API. The reference lists come first, from
 // serial calls (threads = 1) on one thread; then 12 threads each run every case several times,
 // alternately through the compute_neighbors() free function (its thread-local search, below
-// lib/search/policy.hpp's reuse_search_below, and a fresh search above it) and through a
+// lib/policy/policy.hpp's reuse_search_below, and a fresh search above it) and through a
 // NeighborSearch and a NeighborList of their own, reused across cases, with 1 to 4 internal
 // threads (a thread team per call, lib/detail/parallel.hpp). Every list must equal the
 // reference bit for bit.

@@ -1,4 +1,4 @@
-// The cost model's formulas (lib/cost_model/cost_model.hpp), each against its definition.
+// The cost model's formulas (lib/policy/cost_model.hpp), each against its definition.
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "cost_model/cost_model.hpp"
+#include "policy/cost_model.hpp"
 
 namespace {
 

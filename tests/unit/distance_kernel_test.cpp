@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "search/distance_kernel.hpp"
+#include "scan/distance_kernel.hpp"
 
 using tricell::detail::kernel_block;
 

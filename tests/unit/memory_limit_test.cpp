@@ -11,8 +11,8 @@
 
 #include <gtest/gtest.h>
 
-#include "search/list_limits.hpp"
-#include "search/pair_sink.hpp"
+#include "policy/list_limits.hpp"
+#include "scan/pair_sink.hpp"
 #include "tricell/batch.hpp"
 #include "tricell/error.hpp"
 #include "tricell/neighbor_list.hpp"

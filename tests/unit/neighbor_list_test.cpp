@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "search/distance_kernel.hpp"
+#include "scan/distance_kernel.hpp"
 #include "support/brute_force.hpp"
 #include "support/expect_throw_msg.hpp"
 #include "support/random_boxes.hpp"
@@ -263,7 +263,7 @@ TEST(NeighborList, RejectsPositionTooFarToWrap) {
 }
 
 TEST(NeighborList, BatchedOutputEqualsBruteForceForAnyThreadCount) {
-    // The batched in-place output of 2 to 4 threads (lib/search/ordered_output.hpp) against one
+    // The batched in-place output of 2 to 4 threads (lib/output/unit_ordered_batches.hpp) against one
     // thread storing directly and against brute force: a list of about 294000 pairs, and
     // clustered atoms whose list is several times the per-cell estimate, so the final columns
     // must grow while batches are copied in.

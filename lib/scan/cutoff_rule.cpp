@@ -2,7 +2,7 @@
 #include <cmath>
 #include <map>
 
-#include "search/candidate_scan.hpp"
+#include "scan/candidate_scan.hpp"
 #include "tricell/error.hpp"
 
 namespace tricell::detail {

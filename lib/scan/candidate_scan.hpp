@@ -38,9 +38,9 @@
 
 #include <Eigen/Core>
 
-#include "search/distance_kernel.hpp"
-#include "search/half_orientation.hpp"
-#include "search/pair_sink.hpp"
+#include "scan/distance_kernel.hpp"
+#include "scan/half_orientation.hpp"
+#include "scan/pair_sink.hpp"
 #include "tricell/neighbor_list.hpp"
 
 namespace tricell::detail {

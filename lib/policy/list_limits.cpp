@@ -1,4 +1,4 @@
-#include "search/list_limits.hpp"
+#include "policy/list_limits.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "search/output_order.hpp"
+#include "output/grouped_and_sorted.hpp"
 
 #include "detail/stream_copy.hpp"
 

@@ -1,4 +1,4 @@
-// The cost model: the formulas behind every choice of how a search runs (lib/search/policy.cpp
+// The cost model: the formulas behind every choice of how a search runs (lib/policy/policy.cpp
 // calls them and nothing else decides). benchmarks/backend_bench.cpp fits the constants; the
 // skin model and the occupancy constants a user tunes are public (tricell/tuning.hpp). Private
 // to the library: tests and benchmarks include it directly.
@@ -97,7 +97,7 @@ struct OccupancyMoments {
 // and the octree is the cheaper for f < f* (f* = 0 when the octree loses at both densities, 1 when
 // it wins at both). f* is small whenever rho_lo << rho_hi: the dense phase must be a small part
 // of the volume before the vapour's savings outweigh its extra cost. automatic_backend() (in
-// lib/search/policy.cpp) evaluates T in its general form, the sum of u(rho_i) over the atoms,
+// lib/policy/policy.cpp) evaluates T in its general form, the sum of u(rho_i) over the atoms,
 // with each atom's local density rho_i read from a sample of at most 4096 atoms binned in cells
 // of at least 2 r, and takes the octree when T_oct < 0.7 T_grid (a clear win: those cells read a
 // cluster's surface as vapour, and the fitted costs scatter by about 20%); it skips the sample

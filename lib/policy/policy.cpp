@@ -1,4 +1,4 @@
-#include "search/policy.hpp"
+#include "policy/policy.hpp"
 
 #include <algorithm>
 #include <array>
@@ -7,7 +7,7 @@
 #include <limits>
 #include <thread>
 
-#include "cost_model/cost_model.hpp"
+#include "policy/cost_model.hpp"
 #include "detail/parallel.hpp"
 
 namespace tricell::detail {

@@ -1,5 +1,5 @@
 // A shift found in a reduced search frame, in the caller's frame: S = T S' (T the integer
-// matrix of the reduction, search/frame.hpp). The products are taken in 64 bits: the result fits
+// matrix of the reduction, frame/search_frame.hpp). The products are taken in 64 bits: the result fits
 // an int (build() refuses positions more than Box::max_fractional caller box lengths away, as
 // the caller's own box would), but a product of an entry of T and a component of S' alone
 // need not.

@@ -1,5 +1,5 @@
 // The search policy: every choice of how a search runs, and nothing about what it finds. Each
-// choice calls the cost model's formulas (lib/cost_model/) with its inputs; no other file of the
+// choice calls the cost model's formulas (cost_model.hpp) with its inputs; no other file of the
 // search decides any of these. None of them changes a result: the same input gives the same
 // pairs in the same order whatever is chosen here.
 //

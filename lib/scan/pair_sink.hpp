@@ -14,9 +14,9 @@
 
 #include <Eigen/Core>
 
-#include "search/caller_shift.hpp"
-#include "search/distance_kernel.hpp"
-#include "search/list_limits.hpp"
+#include "frame/caller_shift.hpp"
+#include "scan/distance_kernel.hpp"
+#include "policy/list_limits.hpp"
 #include "tricell/error.hpp"
 #include "tricell/neighbor_list.hpp"
 

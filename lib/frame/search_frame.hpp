@@ -13,7 +13,7 @@
 
 #include <Eigen/Core>
 
-#include "search/candidate_scan.hpp"
+#include "scan/candidate_scan.hpp"
 #include "tricell/box.hpp"
 #include "tricell/pair_columns.hpp"
 #include "tricell/types.hpp"

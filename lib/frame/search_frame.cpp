@@ -1,4 +1,4 @@
-#include "search/frame.hpp"
+#include "frame/search_frame.hpp"
 
 #include <algorithm>
 #include <array>
@@ -7,7 +7,7 @@
 
 #include "detail/lattice_reduction.hpp"
 #include "detail/parallel.hpp"
-#include "search/caller_shift.hpp"
+#include "frame/caller_shift.hpp"
 #include "tricell/error.hpp"
 
 namespace tricell::detail {

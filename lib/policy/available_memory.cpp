@@ -1,4 +1,4 @@
-#include "search/available_memory.hpp"
+#include "policy/available_memory.hpp"
 
 #include <algorithm>
 #include <fstream>

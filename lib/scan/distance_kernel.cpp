@@ -1,4 +1,4 @@
-#include "search/distance_kernel.hpp"
+#include "scan/distance_kernel.hpp"
 
 #include <cmath>
 

@@ -29,8 +29,8 @@
 
 #include "detail/parallel.hpp"
 #include "detail/stream_copy.hpp"
-#include "search/pair_sink.hpp"
-#include "search/policy.hpp"
+#include "scan/pair_sink.hpp"
+#include "policy/policy.hpp"
 #include "tricell/error.hpp"
 
 namespace tricell::detail {
