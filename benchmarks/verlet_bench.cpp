@@ -19,8 +19,8 @@
 #include <Eigen/Dense>
 #include <benchmark/benchmark.h>
 
-#include "policy/cost_model.hpp"
 #include "lj_system.hpp"
+#include "policy/cost_model.hpp"
 #include <tricell/verlet.hpp>
 
 namespace {

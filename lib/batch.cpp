@@ -5,7 +5,6 @@
 #include <cmath>
 #include <exception>
 #include <limits>
-#include <thread>
 
 #include "detail/parallel.hpp"
 #include "policy/list_limits.hpp"
@@ -52,30 +51,6 @@ template <class T> void append(PairArray<T>& to, const PairArray<T>& from) {
     to.insert(to.end(), from.begin(), from.end());
 }
 
-// Contiguous runs of structures of about equal estimated cost, at most `threads` of them.
-std::vector<std::size_t> split_by_cost(const BatchStructure* structures, std::size_t count,
-                                       const NeighborOptions& options, std::size_t threads) {
-    std::vector<std::size_t> bounds{0};
-    if (threads > 1) {
-        std::vector<double> cost(count);
-        double total = 0;
-        for (std::size_t s = 0; s < count; ++s) {
-            cost[s] =
-                detail::structure_cost(structures[s].box, structures[s].positions.size(), options);
-            total += cost[s];
-        }
-        double running = 0;
-        for (std::size_t s = 0; s + 1 < count && bounds.size() < threads; ++s) {
-            running += cost[s];
-            if (running >= total * double(bounds.size()) / double(threads)) {
-                bounds.push_back(s + 1);
-            }
-        }
-    }
-    bounds.push_back(count);
-    return bounds;
-}
-
 using detail::run_in_threads; // detail/parallel.hpp
 
 } // namespace
@@ -106,11 +81,12 @@ void compute_neighbors_batch(const BatchStructure* structures, std::size_t count
     }
     const detail::ListLimits limits(options, all_atoms);
     const char* const batch_over_limit = "the batch has too many pairs in total";
-    std::size_t threads = options.threads > 0
-                              ? std::size_t(options.threads)
-                              : std::max<std::size_t>(1, std::thread::hardware_concurrency());
-    threads = std::max<std::size_t>(1, std::min(threads, count));
-    const std::vector<std::size_t> bounds = split_by_cost(structures, count, options, threads);
+    std::vector<double> cost(count);
+    for (std::size_t s = 0; s < count; ++s) {
+        cost[s] =
+            detail::structure_cost(structures[s].box, structures[s].positions.size(), options);
+    }
+    const std::vector<std::size_t> bounds = detail::plan_structure_runs(cost, options);
     const std::size_t runs = bounds.size() - 1;
 
     NeighborOptions one = options; // each structure's search runs on its worker's thread

@@ -7,6 +7,7 @@
 #include <Eigen/LU>
 
 #include "detail/lattice_reduction.hpp"
+#include "detail/pi.hpp"
 #include "tricell/error.hpp"
 
 namespace tricell {
@@ -14,15 +15,14 @@ namespace tricell {
 namespace {
 
 constexpr const char* axis_name[3] = {"a", "b", "c"};
-constexpr double pi = 3.14159265358979323846;
 // A box whose |det H| is below this fraction of |a||b||c| is treated as flat.
 constexpr double flatness_tolerance = 1e-10;
 
 double degrees(double radians) {
-    return radians * 180.0 / pi;
+    return radians * 180.0 / detail::pi;
 }
 double radians(double degrees) {
-    return degrees * pi / 180.0;
+    return degrees * detail::pi / 180.0;
 }
 
 double angle_between(const Eigen::Vector3d& u, const Eigen::Vector3d& v) {

@@ -3,6 +3,7 @@
 #include "detail/candidate_radius.hpp"
 #include "detail/verlet_filter.hpp"
 #include "scan/distance_kernel.hpp"
+#include "search/list_access.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -235,7 +236,7 @@ void VerletList::refresh(const Box& box) {
     const Quantities& q = options_.neighbors.quantities;
     const std::size_t n = tracker_.atom_count();
     const std::size_t capacity = candidate_j_.size();
-    PairColumns& columns = pairs_.columns();
+    PairColumns& columns = detail::ListAccess::columns(pairs_);
     columns.i.resize(capacity);
     columns.j.resize(capacity);
     columns.shifts.resize(q.shifts ? 3 * capacity : 0);

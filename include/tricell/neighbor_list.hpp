@@ -159,6 +159,10 @@ struct Pair {
     double distance() const { return std::sqrt(distance_sq); }
 };
 
+namespace detail {
+class ListAccess; // lib/search/list_access.hpp: how the library fills a list
+} // namespace detail
+
 /// Stored pairs, struct-of-arrays. Reuse one object across calls to keep its buffers.
 class TRICELL_API NeighborList {
   public:
@@ -181,20 +185,16 @@ class TRICELL_API NeighborList {
     /// Empties the list, keeping the capacity.
     void clear() { columns_.clear(); }
 
-    /// The columns themselves, for code that fills or reorders a list (the search, the Verlet
-    /// list and the analysis write through this).
+    /// The columns themselves.
     const PairColumns& columns() const { return columns_; }
-    PairColumns& columns() { return columns_; }
-    /// Per-thread batch columns that a threaded compute() keeps here between calls, so that
-    /// their memory is reused instead of being faulted in again. Not part of the list.
-    std::vector<PairColumns>& thread_columns() { return thread_columns_; }
-    /// The raw scratch column a grouped compute() regroups each column through, kept here
-    /// between calls (empty between them, its capacity kept) for the same reason. Not part of
-    /// the list.
-    PairArray<unsigned char>& order_scratch() { return order_scratch_; }
 
   private:
+    friend class detail::ListAccess;
     PairColumns columns_;
+    // Kept here between calls so that their memory is reused instead of being faulted in again;
+    // not part of the list: the per-thread batch columns of a threaded compute(), and the raw
+    // scratch column a grouped compute() regroups each column through (empty between calls, its
+    // capacity kept).
     std::vector<PairColumns> thread_columns_;
     PairArray<unsigned char> order_scratch_;
 };

@@ -7,6 +7,7 @@
 
 #include <cmath>
 
+#include "search/list_access.hpp"
 #include "tricell/error.hpp"
 
 namespace tricell {
@@ -64,7 +65,7 @@ ShellNeighborList compute_neighbors(const Box& box, PointsView positions,
     for (std::size_t k = 1; k < out.offsets.size(); ++k) {
         out.offsets[k] += out.offsets[k - 1];
     }
-    PairColumns& columns = list.columns();
+    PairColumns& columns = detail::ListAccess::columns(list);
     if (cutoffs.size() > 1) {
         std::vector<std::size_t> order(pairs);
         std::vector<std::size_t> next(out.offsets.begin(), out.offsets.end() - 1);

@@ -7,6 +7,8 @@
 //
 // Adding a backend: a file here and one line of the table in lib/search/registry.cpp; the
 // automatic choice (lib/policy/policy.cpp) picks it only once the cost model knows its cost.
+// A backend takes its tuning from the build plan it is given (threads, the cell cap, the
+// stencil's pruning), never from a policy of its own.
 #pragma once
 
 #include <cstddef>
@@ -16,19 +18,13 @@
 
 #include <Eigen/Core>
 
+#include "policy/policy.hpp"
 #include "scan/candidate_scan.hpp"
 #include "tricell/box.hpp"
 #include "tricell/error.hpp"
 #include "tricell/neighbor_list.hpp"
 
 namespace tricell::detail {
-
-/// Occupancy of every work unit: its atoms and its fractional volume (for the work and pair-count
-/// estimates from the occupancy moments, cost_model.hpp).
-struct UnitOccupancy {
-    std::vector<double> atoms;
-    std::vector<double> volume;
-};
 
 /// What every backend is given to bin: the search frame and the wrapped fractional positions.
 struct BinningInput {
@@ -37,8 +33,7 @@ struct BinningInput {
     Eigen::Vector3d lower, upper;                   ///< extent of the positions, per axis
     double search_radius;                           ///< largest cutoff plus a rounding margin
     const NeighborOptions& options;                 ///< tuning knobs (half, leaf_size, ...)
-    std::size_t threads = 1;                        ///< threads the binning may use
-    std::size_t max_cells = 0;                      ///< cap of the dense and linked grids
+    const BuildPlan& plan;                          ///< threads, the cell cap, the pruning
 };
 
 class Backend {

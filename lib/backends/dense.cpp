@@ -18,14 +18,16 @@ class DenseBackend final : public Backend {
   public:
     void bin(const BinningInput& input, std::vector<std::uint32_t>& order) override {
         const std::size_t n = input.fractional.size();
-        cells_.build(input, input.max_cells, true);
+        cells_.build(input, input.plan.cell_cap, true);
         std::vector<std::uint32_t> cell_of(n);
-        parallel_ranges(n, input.threads, [&](std::size_t begin, std::size_t end, std::size_t) {
-            for (std::size_t i = begin; i < end; ++i) {
-                cell_of[i] = static_cast<std::uint32_t>(cells_.grid().cell_of(input.fractional[i]));
-            }
-        });
-        sorted_.build(cell_of, cells_.grid().cell_count(), input.threads);
+        parallel_ranges(
+            n, input.plan.threads, [&](std::size_t begin, std::size_t end, std::size_t) {
+                for (std::size_t i = begin; i < end; ++i) {
+                    cell_of[i] =
+                        static_cast<std::uint32_t>(cells_.grid().cell_of(input.fractional[i]));
+                }
+            });
+        sorted_.build(cell_of, cells_.grid().cell_count(), input.plan.threads);
         order = sorted_.order();
     }
 

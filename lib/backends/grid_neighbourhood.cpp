@@ -1,7 +1,5 @@
 #include "backends/grid_neighbourhood.hpp"
 
-#include "policy/policy.hpp"
-
 namespace tricell::detail {
 
 void GridNeighbourhood::build(const BinningInput& input, std::size_t max_cells, bool tables) {
@@ -12,8 +10,7 @@ void GridNeighbourhood::build(const BinningInput& input, std::size_t max_cells, 
     grid_ = CellGrid(input.frame, grid_options, input.lower, input.upper);
 
     const bool exact_pruning =
-        exact_stencil_pruning(double(input.fractional.size()),
-                              double(grid_.dims()[0]) * grid_.dims()[1] * grid_.dims()[2]);
+        input.plan.exact_pruning(double(grid_.dims()[0]) * grid_.dims()[1] * grid_.dims()[2]);
     stencil_ = input.options.half
                    ? Stencil::half(grid_, input.frame, input.search_radius, exact_pruning, tables)
                    : Stencil::full(grid_, input.frame, input.search_radius, exact_pruning, tables);

@@ -15,7 +15,7 @@ class LinkedBackend final : public Backend {
   public:
     void bin(const BinningInput& input, std::vector<std::uint32_t>& order) override {
         const std::size_t n = input.fractional.size();
-        cells_.build(input, input.max_cells, true);
+        cells_.build(input, input.plan.cell_cap, true);
         std::vector<std::uint32_t> cell_of(n);
         order.resize(n);
         for (std::size_t i = 0; i < n; ++i) {

@@ -11,7 +11,7 @@
 // batch; usually that is one batch (two threads finishing neighbouring batches at about the same
 // time). Only a thread holding many such batches (a stalled neighbour), or at the end, waits.
 //
-// ordered_search() is the whole protocol: the threads, their tickets, each thread's queue of
+// write_in_unit_order() is the whole protocol: the threads, their tickets, each thread's queue of
 // scanned batches not yet placed, and the copies.
 //
 // The columns start at the estimated size (untouched capacity is never resident) and grow,
@@ -29,18 +29,18 @@
 
 #include "detail/parallel.hpp"
 #include "detail/stream_copy.hpp"
-#include "scan/pair_sink.hpp"
 #include "policy/policy.hpp"
+#include "scan/pair_sink.hpp"
 #include "tricell/error.hpp"
 
 namespace tricell::detail {
 
-class OrderedOutput {
+class BatchPlacement {
   public:
     /// Fills `columns` (resized to `capacity` now, trimmed by finish()) with `batches` batches;
     /// at most what `limits` allow in all (they must outlive the output).
-    OrderedOutput(const SinkColumns& columns, std::size_t batches, std::size_t capacity,
-                  const ListLimits& limits)
+    BatchPlacement(const SinkColumns& columns, std::size_t batches, std::size_t capacity,
+                   const ListLimits& limits)
         : columns_(columns), limits_(limits), limit_(limits.pairs()), size_(batches, unknown),
           offset_(batches, 0) {
         resize(limit_ != 0 ? std::min(capacity, limit_) : capacity);
@@ -163,12 +163,12 @@ class OrderedOutput {
 /// `capacity` is the room to start with, `limits` those of the list. Rethrows the first
 /// error of any thread after all have stopped.
 template <class ColumnsOf, class Scan>
-void ordered_search(const SinkColumns& final_columns, const BatchPlan& plan, std::size_t capacity,
-                    const ListLimits& limits, std::size_t threads,
-                    std::vector<PairColumns>& scratch, const ColumnsOf& columns_of,
-                    const Scan& scan) {
+void write_in_unit_order(const SinkColumns& final_columns, const BatchPlan& plan,
+                         std::size_t capacity, const ListLimits& limits, std::size_t threads,
+                         std::vector<PairColumns>& scratch, const ColumnsOf& columns_of,
+                         const Scan& scan) {
     const std::size_t batches = plan.size();
-    OrderedOutput output(final_columns, batches, capacity, limits);
+    BatchPlacement output(final_columns, batches, capacity, limits);
     scratch.resize(threads);
     std::vector<std::exception_ptr> errors(threads);
     std::atomic<std::size_t> next{0};

@@ -7,24 +7,21 @@
 // one holds. Version 2 writes a limit in memory.max ("max" for none), version 1 in
 // memory/memory.limit_in_bytes (a number near 2^63 for none). Inside a container the process's
 // own group is usually mounted at the root of /sys/fs/cgroup, so the walk reads the root too.
-// (Exported for its test.)
 #pragma once
 
 #include <cstdint>
 #include <optional>
 #include <string>
 
-#include "tricell/export.hpp"
-
 namespace tricell::detail {
 
 /// The smallest memory limit in bytes of the control groups of a process whose
 /// /proc/self/cgroup reads `self_cgroup`, with the cgroup file systems mounted under `root`
 /// ("/sys/fs/cgroup"); nullopt when no group sets one (or none can be read).
-TRICELL_API std::optional<std::uint64_t> cgroup_memory_limit(const std::string& root,
-                                                             const std::string& self_cgroup);
+std::optional<std::uint64_t> cgroup_memory_limit(const std::string& root,
+                                                 const std::string& self_cgroup);
 
 /// The physical memory in bytes (sysconf); 0 where the system does not say.
-TRICELL_API std::uint64_t physical_memory();
+std::uint64_t physical_memory();
 
 } // namespace tricell::detail

@@ -44,15 +44,12 @@
 #include <numeric>
 #include <vector>
 
+#include "detail/pi.hpp"
 #include "tricell/box.hpp"
 #include "tricell/neighbor_list.hpp"
 #include "tricell/tuning.hpp"
 
 namespace tricell {
-
-namespace cost_model_detail {
-constexpr double pi = 3.14159265358979323846;
-} // namespace cost_model_detail
 
 /// Moments of a set of cell occupancies: count, sum(n), sum(n^2), non-empty cells.
 struct OccupancyMoments {
@@ -199,9 +196,8 @@ inline double octree_cost_per_atom(double density, double cutoff,
                                    const OctreeCosts& costs = OctreeCosts()) {
     const double x = density * cutoff * cutoff * cutoff;
     const double n = costs.leaf_occupancy;
-    const double tests = 8 * n + 24 * std::cbrt(n * n * x) +
-                         6 * cost_model_detail::pi * std::cbrt(n * x * x) +
-                         4 * cost_model_detail::pi / 3 * x;
+    const double tests = 8 * n + 24 * std::cbrt(n * n * x) + 6 * detail::pi * std::cbrt(n * x * x) +
+                         4 * detail::pi / 3 * x;
     return costs.octree[0] + costs.octree[1] * tests;
 }
 

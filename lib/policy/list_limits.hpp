@@ -7,20 +7,18 @@
 // The peak of a list is its columns plus the working space of its order. NeighborOptions::max_bytes
 // bounds that peak, NeighborOptions::max_pairs the pairs: ListLimits turns both into pair
 // counts for the stores, and refuses an estimate or a list past either with a PairLimitError
-// that names the pairs, their bytes and the limit. (Exported for its test and the memory
-// benchmark.)
+// that names the pairs, their bytes and the limit.
 #pragma once
 
 #include <cstddef>
 #include <string>
 
-#include "tricell/export.hpp"
 #include "tricell/neighbor_list.hpp"
 
 namespace tricell::detail {
 
 /// Bytes of a list of given pairs and atoms, for one set of stored columns and order.
-struct TRICELL_API ListMemory {
+struct ListMemory {
     double per_pair = 0;       ///< the stored columns
     double widest = 0;         ///< the widest stored column (held twice while it grows)
     double order_per_pair = 0; ///< grouping's or sorting's working space
@@ -38,10 +36,10 @@ struct TRICELL_API ListMemory {
 
 /// The memory model of the list `options` asks for (its quantities and order; a sorted list
 /// stores S while it sorts).
-TRICELL_API ListMemory list_memory(const NeighborOptions& options);
+ListMemory list_memory(const NeighborOptions& options);
 
 /// options.max_pairs and options.max_bytes for a list of `atoms` atoms, as pair counts.
-class TRICELL_API ListLimits {
+class ListLimits {
   public:
     ListLimits() = default; ///< no limit
     ListLimits(const NeighborOptions& options, std::size_t atoms);

@@ -7,27 +7,16 @@
 #include <limits>
 #include <thread>
 
-#include "policy/cost_model.hpp"
 #include "detail/parallel.hpp"
+#include "detail/pi.hpp"
+#include "policy/cost_model.hpp"
 
 namespace tricell::detail {
 
 namespace {
 
-constexpr double pi = 3.14159265358979323846;
-
 std::size_t hardware_threads() {
     return std::max<std::size_t>(1, std::thread::hardware_concurrency());
-}
-
-} // namespace
-
-std::size_t build_threads(const NeighborOptions& options, std::size_t atoms) {
-    // Explicit threads from 16 atoms per thread (so that the property tests run the threaded
-    // phases on small systems); automatic ones from 16384, where a phase outweighs waking a
-    // thread.
-    return options.threads > 0 ? threads_for(atoms, std::size_t(options.threads), 16)
-                               : threads_for(atoms, hardware_threads(), 16384);
 }
 
 std::size_t compute_threads(const NeighborOptions& options, double estimated_pairs,
@@ -40,20 +29,11 @@ std::size_t compute_threads(const NeighborOptions& options, double estimated_pai
     return std::max<std::size_t>(1, std::min(threads, units));
 }
 
-std::size_t call_threads(const NeighborOptions& options) {
-    return options.threads > 0 ? std::size_t(options.threads) : hardware_threads();
-}
-
 std::size_t cell_cap(const NeighborOptions& options, std::size_t atoms) {
     return options.max_cells != 0 ? options.max_cells : 4 * atoms + 64;
 }
 
-bool exact_stencil_pruning(double atoms, double cells) {
-    // Solving one offset's closest approach costs about 1000 instructions, an offset leads to
-    // about N^2 / C / 5 distance tests.
-    return atoms * atoms / cells > 200;
-}
-
+// The concrete backend for `automatic` (see the comment atop policy.hpp).
 SearchBackend automatic_backend(const Box& box, const std::vector<Eigen::Vector3d>& fractional,
                                 const Eigen::Vector3d& lower, const Eigen::Vector3d& upper,
                                 double search_radius, const NeighborOptions& options) {
@@ -132,6 +112,8 @@ SearchBackend automatic_backend(const Box& box, const std::vector<Eigen::Vector3
     return octree_cost < 0.7 * grid_cost ? SearchBackend::octree : grid;
 }
 
+// Expected stored pairs of a whole system: the density over the region the atoms occupy (an
+// open axis counts as at least one cutoff thick); what max_pairs is checked against.
 double estimated_system_pairs(const Box& box, std::size_t atoms, const Eigen::Vector3d& lower,
                               const Eigen::Vector3d& upper, double cutoff, bool half) {
     double volume = box.volume();
@@ -140,7 +122,7 @@ double estimated_system_pairs(const Box& box, std::size_t atoms, const Eigen::Ve
             volume *= std::max(upper[k] - lower[k], cutoff / box.perpendicular_widths()[k]);
         }
     }
-    const double sphere = 4.0 / 3.0 * pi * std::pow(cutoff, 3);
+    const double sphere = sphere_volume(cutoff);
     // The whole system's n^2 sphere / V, kept in this order (the estimate is reported); NaN when
     // sphere and volume both underflowed: no estimate (the sink still enforces max_pairs on the
     // real count).
@@ -148,13 +130,17 @@ double estimated_system_pairs(const Box& box, std::size_t atoms, const Eigen::Ve
     return std::isnan(pairs) ? 0 : pairs;
 }
 
-std::size_t pair_room(double expected, std::size_t limit) {
+// Pairs to reserve room for when `expected` are expected: a tenth more, at most `limit` (the
+// pair limit), or 2^24 pairs when there is no limit (0).
+std::size_t pair_room(double expected, std::size_t limit = 0) {
     const double cap = limit != 0 ? double(limit) : double(std::size_t(1) << 24);
     return std::isfinite(expected) && expected * 1.1 + 1024 < cap
                ? static_cast<std::size_t>(expected * 1.1) + 1024
                : static_cast<std::size_t>(cap);
 }
 
+// The batches of `units` units with `expected[u]` expected pairs and `work[u]` occupancy work
+// each, for `threads` threads (at least four batches per thread).
 BatchPlan plan_batches(const std::vector<double>& work, const std::vector<double>& expected,
                        std::size_t threads) {
     // About batch_pairs pairs a batch: with i, j, S, d about 230 KB of columns, which stay in
@@ -179,13 +165,90 @@ BatchPlan plan_batches(const std::vector<double>& work, const std::vector<double
     return plan;
 }
 
+} // namespace
+
+std::size_t build_threads(const NeighborOptions& options, std::size_t atoms) {
+    // Explicit threads from 16 atoms per thread (so that the property tests run the threaded
+    // phases on small systems); automatic ones from 16384, where a phase outweighs waking a
+    // thread.
+    return options.threads > 0 ? threads_for(atoms, std::size_t(options.threads), 16)
+                               : threads_for(atoms, hardware_threads(), 16384);
+}
+
+std::size_t call_threads(const NeighborOptions& options) {
+    return options.threads > 0 ? std::size_t(options.threads) : hardware_threads();
+}
+
+bool BuildPlan::exact_pruning(double cells) const {
+    // Solving one offset's closest approach costs about 1000 instructions, an offset leads to
+    // about N^2 / C / 5 distance tests.
+    return double(atoms) * double(atoms) / cells > 200;
+}
+
+BuildPlan plan_build(const NeighborOptions& options, const Box& frame,
+                     const WrappedPositions& wrapped, double cutoff, double search_radius,
+                     std::size_t query_atoms) {
+    const std::size_t n = wrapped.fractional.size();
+    const bool subset = query_atoms < n;
+    BuildPlan plan;
+    plan.threads = build_threads(options, n);
+    plan.atoms = n;
+    plan.cell_cap = cell_cap(options, n);
+    // A subset search's pairs are estimated as the query's share of the full list's.
+    plan.estimated_pairs = estimated_system_pairs(frame, n, wrapped.lower, wrapped.upper, cutoff,
+                                                  options.half && !subset) *
+                           (double(query_atoms) / double(n));
+    plan.backend = options.backend == SearchBackend::automatic
+                       ? automatic_backend(frame, wrapped.fractional, wrapped.lower, wrapped.upper,
+                                           search_radius, options)
+                       : options.backend;
+    return plan;
+}
+
+ComputePlan plan_compute(const NeighborOptions& options, const ComputeInput& input,
+                         const ListLimits& limits) {
+    const std::size_t units = input.occupancy.atoms.size();
+    ComputePlan plan;
+    plan.threads = compute_threads(options, input.estimated_pairs, units);
+    // Expected pairs of each unit, from its occupancy; a subset search keeps the query's share
+    // of them, for both halves of a full scan.
+    const double sphere = sphere_volume(input.max_cutoff);
+    const bool subset = input.query_atoms != 0;
+    const double share =
+        subset ? double(input.query_atoms) / double(input.atoms) : (options.half ? 0.5 : 1.0);
+    std::vector<double> expected(units);
+    double total = 0;
+    for (std::size_t u = 0; u < units; ++u) {
+        expected[u] = share * expected_pairs(input.occupancy.atoms[u],
+                                             input.occupancy.volume[u] * input.box_volume, sphere);
+        total += expected[u];
+    }
+    plan.room = pair_room(total, limits.pairs() == 0 ? 0 : limits.pairs() + input.claim);
+    if (plan.threads > 1) {
+        std::vector<double> work(units);
+        const double neighbours = input.neighbours();
+        for (std::size_t u = 0; u < units; ++u) {
+            work[u] = occupancy_work(input.occupancy.atoms[u], neighbours);
+        }
+        plan.batches = plan_batches(work, expected, plan.threads);
+    }
+    return plan;
+}
+
 double structure_cost(const Box& box, std::size_t atoms, const NeighborOptions& options) {
     // Measured on small cells: a call costs about 300 stored pairs, an atom's binning about 3.
     constexpr double per_call = 300, per_atom = 3;
     const double n = double(atoms);
-    const double sphere = 4.0 / 3.0 * pi * std::pow(options.cutoff, 3);
+    const double sphere = sphere_volume(options.cutoff);
     const double pairs = std::min(expected_pairs(n, std::abs(box.volume()), sphere), n * n * 1e3);
     return per_call + per_atom * n + (options.half ? 0.5 : 1.0) * pairs;
+}
+
+std::vector<std::size_t> plan_structure_runs(const std::vector<double>& cost,
+                                             const NeighborOptions& options) {
+    std::size_t threads = options.threads > 0 ? std::size_t(options.threads) : hardware_threads();
+    threads = std::max<std::size_t>(1, std::min(threads, cost.size()));
+    return split_work(cost, threads);
 }
 
 } // namespace tricell::detail

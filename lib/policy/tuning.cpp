@@ -3,13 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "detail/pi.hpp"
 #include "tricell/error.hpp"
 
 namespace tricell {
-
-namespace {
-constexpr double pi = 3.14159265358979323846;
-} // namespace
 
 double cells_per_list_radius(CellSize rule, double cutoff, double skin) {
     switch (rule) {
@@ -86,7 +83,7 @@ SkinPrediction predict_skin_cost(const SkinCostModel& model, double skin, CellSi
     const double h = r / p.cells_per_cutoff;
     const double cells = double(stencil_cells(p.cells_per_cutoff));
     p.steps_per_build = 1 + skin / (2 * model.displacement_per_step);
-    p.candidates_per_atom = g * rho * 4.0 / 3.0 * pi * r * r * r;
+    p.candidates_per_atom = g * rho * detail::sphere_volume(r);
     p.build_tests_per_atom = g * rho * cells * h * h * h;
     const double visits = g * cells / (rho * h * h * h);
     p.build_cost = model.build_per_atom + model.build_per_test * p.build_tests_per_atom +

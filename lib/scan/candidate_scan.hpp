@@ -4,29 +4,15 @@
 // and an image shift relative to the caller's positions, applies a variable cutoff when there is
 // one, orients half-list pairs canonically and hands them to the PairSink.
 //
-// Positions live in an AtomTable: the wrapped Cartesian positions struct-of-arrays in the
-// backend's order (contiguous ranges stream through the vectorised kernel), the integer image
-// each came from (x = wrapped + H image) and the caller's index of each. A pair (a, b) found
-// through the cell shift s has, for the caller, S = s + image_a - image_b and
-// D = (x_b - x_a) + T with T = H s in the search frame, rounded in exactly that order (the
-// positions' difference first, then the translation) and a zero component stored as +0. IEEE
-// rounding is symmetric (fl(p - q) = -fl(q - p), and T of -s is exactly -T), so the same pair
-// found from b is (b, a) through -s with exactly -D and the same d^2: D is a function of
-// (i, j, S) alone, whichever atom a backend scans first, and a half list turns a pair into its
-// canonical orientation by negating D, computing nothing again.
+// Positions live in an AtomTable (atom_table.hpp). A pair (a, b) found through the cell shift s
+// has, for the caller, S = s + image_a - image_b and D = (x_b - x_a) + T with T = H s in the search
+// frame, rounded in exactly that order (the positions' difference first, then the translation) and
+// a zero component stored as +0. IEEE rounding is symmetric (fl(p - q) = -fl(q - p), and T of -s is
+// exactly -T), so the same pair found from b is (b, a) through -s with exactly -D and the same d^2:
+// D is a function of (i, j, S) alone, whichever atom a backend scans first, and a half list turns a
+// pair into its canonical orientation by negating D, computing nothing again.
 //
-// A subset search (NeighborOptions::query) flags the query atoms and takes as first atom of a
-// test only a query atom, gathered from each range into the kernel's groups, so the tests are
-// those of the query's own pairs. A full subset list has the backend binned for a full list.
-// A half subset list has it binned for a half list (each unordered candidate once) and keeps a
-// pair when either end is a query atom: of (range A, range B, s) the query atoms of A are
-// tested against B through s, then the query atoms of B against A through -s, over the span of
-// A's atoms outside the query only (where a cell lists its query atoms first, as the stable
-// cell sort does for a query of the first indices, just those atoms), keeping the hits outside
-// the query. A pair of two query atoms takes its canonical orientation, as in the half list; a
-// pair with one end in the query is oriented from that end. The own range is scanned from its
-// query atoms against all of it, as a full list, keeping a pair of two query atoms in its
-// canonical orientation only.
+// A subset search (NeighborOptions::query) scans from the query atoms only (subset_scan.hpp).
 #pragma once
 
 #include <algorithm>
@@ -38,53 +24,14 @@
 
 #include <Eigen/Core>
 
+#include "frame/search_frame.hpp"
+#include "scan/atom_table.hpp"
+#include "scan/cutoff_rule.hpp"
 #include "scan/distance_kernel.hpp"
 #include "scan/half_orientation.hpp"
 #include "scan/pair_sink.hpp"
-#include "tricell/neighbor_list.hpp"
 
 namespace tricell::detail {
-
-/// Positions in a backend's order (see above).
-struct AtomTable {
-    // Left uninitialised when grown (every entry is written by the build, on its threads).
-    PairArray<double> x, y, z;
-    PairArray<std::int32_t> image;    ///< 3 per atom
-    std::vector<std::uint32_t> index; ///< the caller's index of each atom
-    /// Every image is 0 (every atom was given inside the search frame's cell, the usual case):
-    /// then S = s for every pair a scan through s finds.
-    bool zero_images = false;
-    std::size_t size() const { return index.size(); }
-};
-
-/// Which pairs count when the cutoff varies: per-atom radii (d < r_i + r_j) or a per-species-pair
-/// table (d < r(s_i, s_j); a missing species pair never counts). Uniform otherwise, where the
-/// scan's threshold alone decides.
-class CutoffRule {
-  public:
-    /// Validates radii / species against the atom count and builds the lookup tables.
-    void set(const NeighborOptions& options, std::size_t atom_count);
-    bool uniform() const { return kind_ == Kind::uniform; }
-    /// The largest cutoff any pair can have (0: no pair can count).
-    double max_cutoff() const { return max_cutoff_; }
-    /// For a candidate already within max_cutoff(): does it count?
-    bool accepts(std::uint32_t i, std::uint32_t j, double d_sq) const {
-        if (kind_ == Kind::radii) {
-            return std::sqrt(d_sq) < radii_[i] + radii_[j];
-        }
-        return d_sq < threshold_sq_[std::size_t(species_index_[i]) * kinds_ +
-                                    std::size_t(species_index_[j])];
-    }
-
-  private:
-    enum class Kind { uniform, radii, species };
-    Kind kind_ = Kind::uniform;
-    double max_cutoff_ = 0;
-    std::vector<double> radii_;
-    std::vector<std::uint32_t> species_index_; // dense index of each atom's species
-    std::size_t kinds_ = 0;
-    std::vector<double> threshold_sq_; // kinds_ x kinds_ strict thresholds (0: never)
-};
 
 /// An image shift s (search frame) and its Cartesian vector H s.
 struct ImageShift {
@@ -94,14 +41,15 @@ struct ImageShift {
 
 class CandidateScanner {
   public:
-    CandidateScanner(const AtomTable& atoms, const Eigen::Matrix3d& h, double cutoff_sq,
-                     const CutoffRule& rule, bool half, const Eigen::Matrix3i& to_caller,
-                     bool reduced_frame, PairSink& sink, const std::uint8_t* query = nullptr,
-                     bool subset_half = false)
+    /// Scans `atoms` (in `frame`'s box) for the pairs `rule` takes, of a full or a `half` list
+    /// (a subset one when the table has query flags), into `sink`.
+    CandidateScanner(const AtomTable& atoms, const SearchFrame& frame, const CutoffRule& rule,
+                     bool half, PairSink& sink)
         : x_(atoms.x.data()), y_(atoms.y.data()), z_(atoms.z.data()), image_(atoms.image.data()),
-          zero_images_(atoms.zero_images), index_(atoms.index.data()), h_(h), cutoff_sq_(cutoff_sq),
-          rule_(rule), half_(half), to_caller_(to_caller), reduced_frame_(reduced_frame),
-          sink_(sink), query_(query), subset_half_(subset_half) {}
+          zero_images_(atoms.zero_images), index_(atoms.index.data()), h_(frame.box().matrix()),
+          cutoff_sq_(rule.threshold_sq()), rule_(rule), half_(half), frame_(frame), sink_(sink),
+          query_(atoms.subset() ? atoms.query.data() : nullptr),
+          subset_half_(atoms.subset() && half) {}
 
     /// Whether atom a can be the first atom of a pair (false only outside the query of a full
     /// subset list); backends that name single pairs skip the others early.
@@ -217,57 +165,21 @@ class CandidateScanner {
         }
     }
 
+    // The subset search's part (subset_scan.hpp).
+    void half_subset_ranges(std::uint32_t a0, std::uint32_t a1, std::uint32_t b0, std::uint32_t b1,
+                            const ImageShift& s, bool own);
+    void subset_ranges(std::uint32_t a0, std::uint32_t a1, std::uint32_t b0, std::uint32_t b1,
+                       const ImageShift& s, Scan how);
+    bool may_turn(Scan how, std::uint32_t start, const std::uint32_t* hits,
+                  std::uint32_t found) const;
+    std::uint32_t drop_queried(std::uint32_t start, std::uint32_t* hits, double* d_sq,
+                               std::uint32_t found) const;
+    std::uint32_t drop_mirrored(const Side& side, std::uint32_t start, std::uint32_t* hits,
+                                double* d_sq, std::uint32_t found) const;
+
     // -s (T of -s is exactly -T, see above).
     static ImageShift reversed(const ImageShift& s) {
         return ImageShift{{-s.s[0], -s.s[1], -s.s[2]}, {-s.v[0], -s.v[1], -s.v[2]}};
-    }
-
-    // A half subset list's (range, range, shift) triple (see the comment atop this file). The
-    // own range (b0 == a0 in a half list) is the own cell scanned as a full list, then the rest
-    // of the run as an ordinary triple.
-    void half_subset_ranges(std::uint32_t a0, std::uint32_t a1, std::uint32_t b0, std::uint32_t b1,
-                            const ImageShift& s, bool own) {
-        if (own) {
-            subset_ranges(a0, a1, a0, a1, s, Scan::own);
-            if (a1 < b1) {
-                half_subset_ranges(a0, a1, a1, b1, s, false);
-            }
-            return;
-        }
-        subset_ranges(a0, a1, b0, b1, s, Scan::plain);
-        std::uint32_t first = a0, end = a1; // the span of A's atoms outside the query
-        while (first < end && query_[first] != 0) {
-            ++first;
-        }
-        while (end > first && query_[end - 1] != 0) {
-            --end;
-        }
-        if (first < end) {
-            subset_ranges(b0, b1, first, end, reversed(s), Scan::to_others);
-        }
-    }
-
-    // The query atoms of [a0, a1) as first atoms, in groups of up to kernel_group, against
-    // [b0, b1) through s (with Scan::own every b but a itself).
-    void subset_ranges(std::uint32_t a0, std::uint32_t a1, std::uint32_t b0, std::uint32_t b1,
-                       const ImageShift& s, Scan how) {
-        std::uint32_t group[kernel_group];
-        std::uint32_t count = 0;
-        for (std::uint32_t a = a0; a < a1; ++a) {
-            if (query_[a] == 0) {
-                continue;
-            }
-            group[count++] = a;
-            if (count == kernel_group) {
-                tests_ += std::uint64_t(count) * std::uint64_t(b1 - b0);
-                scan(group, count, b0, b1, s, how);
-                count = 0;
-            }
-        }
-        if (count > 0) {
-            tests_ += std::uint64_t(count) * std::uint64_t(b1 - b0);
-            scan(group, count, b0, b1, s, how);
-        }
     }
 
     // Atoms group[0, count) (at most kernel_group, ascending) against b in [from, to) through
@@ -332,56 +244,6 @@ class CandidateScanner {
             hits[kept] = hits[h];
             d_sq[kept] = d_sq[h];
             kept += (later ? b > a : b != a) ? 1u : 0u;
-        }
-        return kept;
-    }
-
-    // Whether a half list may turn a hit of the block around: a subset list turns only pairs of
-    // two query atoms, which a scan from the other range or one of the own range (canonical
-    // already) does not keep.
-    bool may_turn(Scan how, std::uint32_t start, const std::uint32_t* hits,
-                  std::uint32_t found) const {
-        if (query_ == nullptr) {
-            return true;
-        }
-        if (how != Scan::plain) {
-            return false;
-        }
-        for (std::uint32_t h = 0; h < found; ++h) {
-            if (query_[start + hits[h] % kernel_block] != 0) {
-                return true;
-            }
-        }
-        return false;
-    }
-
-    // Drops the hits (a, b) with b a query atom (Scan::to_others: found from a already).
-    std::uint32_t drop_queried(std::uint32_t start, std::uint32_t* hits, double* d_sq,
-                               std::uint32_t found) const {
-        std::uint32_t kept = 0;
-        for (std::uint32_t h = 0; h < found; ++h) {
-            hits[kept] = hits[h];
-            d_sq[kept] = d_sq[h];
-            kept += query_[start + hits[h] % kernel_block] == 0 ? 1u : 0u;
-        }
-        return kept;
-    }
-
-    // A half subset list drops the hits (a, b) with b a query atom too that are not in the
-    // canonical orientation: that pair is kept when found from b. Returns how many remain.
-    std::uint32_t drop_mirrored(const Side& side, std::uint32_t start, std::uint32_t* hits,
-                                double* d_sq, std::uint32_t found) const {
-        std::uint32_t kept = 0;
-        for (std::uint32_t h = 0; h < found; ++h) {
-            const std::uint32_t g = hits[h] / kernel_block;
-            const std::uint32_t b = start + hits[h] % kernel_block;
-            hits[kept] = hits[h];
-            d_sq[kept] = d_sq[h];
-            const bool mirrored =
-                query_[b] != 0 &&
-                flip(side.i[g], index_[b], side.sa[g] - image_[3 * b],
-                     side.sb[g] - image_[3 * b + 1], side.sc[g] - image_[3 * b + 2]);
-            kept += mirrored ? 0u : 1u;
         }
         return kept;
     }
@@ -565,8 +427,7 @@ class CandidateScanner {
         if (i != j) {
             return i > j;
         }
-        const Eigen::Vector3i caller =
-            reduced_frame_ ? caller_shift(to_caller_, sa, sb, sc) : Eigen::Vector3i(sa, sb, sc);
+        const Eigen::Vector3i caller = frame_.caller_shift(sa, sb, sc);
         return lexicographically_positive(-caller[0], -caller[1], -caller[2]);
     }
 
@@ -580,8 +441,7 @@ class CandidateScanner {
     double cutoff_sq_;
     const CutoffRule& rule_;
     bool half_;
-    Eigen::Matrix3i to_caller_;
-    bool reduced_frame_;
+    const SearchFrame& frame_;
     PairSink& sink_;
     const std::uint8_t* query_; // null unless a subset search (see above)
     bool subset_half_;
@@ -589,3 +449,5 @@ class CandidateScanner {
 };
 
 } // namespace tricell::detail
+
+#include "scan/subset_scan.hpp" // IWYU pragma: keep (the subset part of CandidateScanner)

@@ -1,8 +1,10 @@
+#include "scan/cutoff_rule.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <map>
 
-#include "scan/candidate_scan.hpp"
+#include "scan/distance_kernel.hpp"
 #include "tricell/error.hpp"
 
 namespace tricell::detail {
@@ -21,9 +23,7 @@ void CutoffRule::set(const NeighborOptions& options, std::size_t atom_count) {
         radii_ = options.radii;
         const double largest = *std::max_element(radii_.begin(), radii_.end());
         max_cutoff_ = 2 * largest;
-        return;
-    }
-    if (!options.species_cutoffs.empty()) {
+    } else if (!options.species_cutoffs.empty()) {
         if (options.species.size() != atom_count) {
             fail<InvalidArgument>("species has ", options.species.size(), " entries for ",
                                   atom_count, " positions");
@@ -54,10 +54,11 @@ void CutoffRule::set(const NeighborOptions& options, std::size_t atom_count) {
             threshold_sq_[b->second * kinds_ + a->second] = t;
             max_cutoff_ = std::max(max_cutoff_, entry.cutoff);
         }
-        return;
+    } else {
+        kind_ = Kind::uniform;
+        max_cutoff_ = options.cutoff;
     }
-    kind_ = Kind::uniform;
-    max_cutoff_ = options.cutoff;
+    threshold_sq_max_ = max_cutoff_ > 0 ? strict_threshold_sq(max_cutoff_) : 0;
 }
 
 } // namespace tricell::detail

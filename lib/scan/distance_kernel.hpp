@@ -25,10 +25,9 @@ constexpr std::uint32_t kernel_slack = 8;
 /// For k in [0, count), with D = ((x[k] - ax) + shift[0], (y[k] - ay) + shift[1],
 /// (z[k] - az) + shift[2]): if |D|^2 < cutoff_sq, appends k to hits and |D|^2 to hit_d_sq.
 /// Returns the number of hits. count <= kernel_block.
-TRICELL_API std::uint32_t within_cutoff(const double* x, const double* y, const double* z,
-                                        std::uint32_t count, double ax, double ay, double az,
-                                        const double* shift, double cutoff_sq, std::uint32_t* hits,
-                                        double* hit_d_sq);
+std::uint32_t within_cutoff(const double* x, const double* y, const double* z, std::uint32_t count,
+                            double ax, double ay, double az, const double* shift, double cutoff_sq,
+                            std::uint32_t* hits, double* hit_d_sq);
 
 /// Largest number of points within_cutoff_group() takes on its own side.
 constexpr std::uint32_t kernel_group = 8;
@@ -40,10 +39,10 @@ constexpr std::uint32_t kernel_group = 8;
 /// was as large as the tests on diamond Si, whose rows hold ~20 atoms). group <=
 /// kernel_group, count <= kernel_block; hits and hit_d_sq need group * count + kernel_slack
 /// slots.
-TRICELL_API std::uint32_t
-within_cutoff_group(const double* x, const double* y, const double* z, std::uint32_t count,
-                    const double* ax, const double* ay, const double* az, std::uint32_t group,
-                    const double* shift, double cutoff_sq, std::uint32_t* hits, double* hit_d_sq);
+std::uint32_t within_cutoff_group(const double* x, const double* y, const double* z,
+                                  std::uint32_t count, const double* ax, const double* ay,
+                                  const double* az, std::uint32_t group, const double* shift,
+                                  double cutoff_sq, std::uint32_t* hits, double* hit_d_sq);
 
 /// One instruction set's within_cutoff() and within_cutoff_group().
 struct DistanceKernel {
@@ -58,19 +57,19 @@ struct DistanceKernel {
 /// Every kernel this processor can run, fastest first: the first is the one within_cutoff()
 /// and within_cutoff_group() use, the last the portable one (for tests, which hold each to the
 /// portable one bit for bit).
-TRICELL_API std::vector<DistanceKernel> distance_kernels();
+std::vector<DistanceKernel> distance_kernels();
 
 /// out[k] = sqrt(in[k]) for k in [0, count), four at a time where the processor has AVX (sqrt is
 /// correctly rounded either way, so the results are the same bits; a scalar loop calls the
 /// library's sqrt once per value, and was a tenth of a full list's time on diamond Si).
-TRICELL_API void square_roots(const double* in, std::uint32_t count, double* out);
+void square_roots(const double* in, std::uint32_t count, double* out);
 
 /// The threshold T with d_sq < T exactly when sqrt(d_sq) < cutoff (for every double d_sq), so
 /// the strict cutoff of the contract holds to the last bit and for tiny cutoffs whose square
-/// underflows. Requires a finite cutoff > 0.
+/// underflows. Requires a finite cutoff > 0. (Exported for tricell::mpi's Verlet list.)
 TRICELL_API double strict_threshold_sq(double cutoff);
 
 /// Name of the kernel chosen on this processor ("avx512", "avx2" or "generic").
-TRICELL_API const char* distance_kernel_name();
+const char* distance_kernel_name();
 
 } // namespace tricell::detail

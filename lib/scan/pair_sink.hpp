@@ -12,11 +12,9 @@
 #include <cstddef>
 #include <cstdint>
 
-#include <Eigen/Core>
-
-#include "frame/caller_shift.hpp"
-#include "scan/distance_kernel.hpp"
+#include "frame/search_frame.hpp"
 #include "policy/list_limits.hpp"
+#include "scan/distance_kernel.hpp"
 #include "tricell/error.hpp"
 #include "tricell/neighbor_list.hpp"
 
@@ -53,11 +51,9 @@ class PairSink {
     }
 
     /// Block mode: every block_size pairs (and at finish()) calls on_block(context, block),
-    /// with shifts mapped by `to_caller` when `map_shifts`.
-    PairSink(void (*on_block)(void*, const PairBlock&), void* context,
-             const Eigen::Matrix3i& to_caller, bool map_shifts)
-        : on_block_(on_block), context_(context), to_caller_(to_caller), map_shifts_(map_shifts),
-          store_squares_(true) {
+    /// with shifts mapped to the caller's lattice vectors by `frame` (null: left as found).
+    PairSink(void (*on_block)(void*, const PairBlock&), void* context, const SearchFrame* frame)
+        : on_block_(on_block), context_(context), frame_(frame), store_squares_(true) {
         pi_ = block_i_;
         pj_ = block_j_;
         ps_ = block_shifts_;
@@ -172,11 +168,8 @@ class PairSink {
         if (size_ == 0) {
             return;
         }
-        if (map_shifts_) {
-            for (std::size_t k = 0; k < size_; ++k) {
-                Eigen::Map<Eigen::Vector3i> s(ps_ + 3 * k);
-                s = caller_shift(to_caller_, s[0], s[1], s[2]);
-            }
+        if (frame_ != nullptr) {
+            frame_->to_caller(ps_, size_);
         }
         on_block_(context_, PairBlock{size_, pi_, pj_, ps_, pv_, pd_});
         size_ = 0;
@@ -215,8 +208,7 @@ class PairSink {
     // Block mode.
     void (*on_block_)(void*, const PairBlock&) = nullptr;
     void* context_ = nullptr;
-    Eigen::Matrix3i to_caller_ = Eigen::Matrix3i::Identity();
-    bool map_shifts_ = false;
+    const SearchFrame* frame_ = nullptr;
     bool store_squares_ = false;
     std::uint32_t block_i_[block_size];
     std::uint32_t block_j_[block_size];

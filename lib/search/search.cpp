@@ -1,30 +1,32 @@
 // NeighborSearch: the search as a pipeline, each step in its own room.
 //
-//   build:   options.cpp  validate the options and positions
-//            frame.cpp    choose the search frame and wrap the positions into it
-//            policy.cpp   estimate the pairs, choose the backend and the threads
-//            list_limits.cpp  refuse an estimate past max_pairs or max_bytes (before anything
-//                         large is allocated)
-//            backends/    bin the atoms;  frame.cpp  store them in the backend's order
-//   compute: a backend names candidates, candidate_scan.hpp tests them, pair_sink.hpp stores the
-//            hits; on several threads ordered_output.hpp keeps them in unit order; frame.cpp maps
-//            S back to the caller's lattice vectors; output_order.cpp sorts when asked.
+//   build:   search/options.cpp   validate the options and positions
+//            frame/               choose the search frame and wrap the positions into it
+//            policy/              plan the build: threads, estimated pairs, backend, cell cap;
+//                                 refuse an estimate past max_pairs or max_bytes (before anything
+//                                 large is allocated)
+//            backends/            bin the atoms
+//            scan/atom_table.cpp  store them in the backend's order
+//   compute: policy/              plan the compute: threads, room, batches
+//            backends/ + scan/    a backend names candidates, the scanner tests them, the sink
+//                                 stores the hits (on several threads in batches written in unit
+//                                 order, output/unit_ordered_batches.hpp)
+//            frame/               map S back to the caller's lattice vectors
+//            output/              group or sort when asked (output/grouped_and_sorted.cpp)
 #include "tricell/neighbor_list.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <limits>
 
-#include <Eigen/LU>
-
-#include "policy/cost_model.hpp"
 #include "detail/parallel.hpp"
-#include "frame/search_frame.hpp"
-#include "policy/list_limits.hpp"
-#include "search/options.hpp"
-#include "output/unit_ordered_batches.hpp"
+#include "frame/wrap.hpp"
 #include "output/grouped_and_sorted.hpp"
+#include "output/unit_ordered_batches.hpp"
+#include "policy/cost_model.hpp"
+#include "policy/list_limits.hpp"
 #include "policy/policy.hpp"
+#include "search/list_access.hpp"
+#include "search/options.hpp"
 #include "search/search_state.hpp"
 #include "tricell/error.hpp"
 
@@ -32,7 +34,6 @@ namespace tricell {
 
 namespace {
 
-constexpr double pi = 3.14159265358979323846;
 // The grid and stencil are built for a radius this much larger than the cutoff, so rounding
 // in fractional coordinates can never push a pair just inside the cutoff out of the stencil.
 constexpr double search_margin = 1e-9;
@@ -61,53 +62,37 @@ void NeighborSearch::build(const Box& caller_box, PointsView positions,
     s.backend = nullptr;
     s.rule.set(options, n);
     s.options = options;
-    const Box box = detail::search_frame(caller_box, options.reduce_cell, s.to_caller);
-    s.reduced_frame = s.to_caller != Eigen::Matrix3i::Identity();
-    s.h = box.matrix();
+    s.frame = detail::SearchFrame(caller_box, options.reduce_cell);
     s.atom_count = n;
     s.estimated_pairs = 0;
     const double cutoff = s.rule.max_cutoff();
     // At most the largest double: the margin overflows a finite cutoff near it to inf, which the
     // grid refuses and the other backends accept.
     s.search_radius = std::min(cutoff * (1 + search_margin), std::numeric_limits<double>::max());
-
-    // A subset search scans from the query atoms only (candidate_scan.hpp); its pairs are
-    // estimated as the query's share of the full list's.
-    std::vector<std::uint8_t> query = detail::query_flags(options, n);
-    const bool subset = !query.empty();
-    const std::size_t query_size = subset ? options.query->size() : n;
+    // A subset search scans from the query atoms only (scan/subset_scan.hpp).
+    const std::vector<std::uint8_t> query = detail::query_flags(options, n);
+    s.query_atoms = query.empty() ? 0 : options.query->size();
 
     detail::WrappedPositions wrapped;
-    detail::wrap_positions(box, positions, threads, wrapped);
-    detail::check_caller_range(caller_box, s.to_caller, positions, wrapped.image, threads);
-    if (!(cutoff > 0) || n == 0 || query_size == 0) {
+    detail::wrap_positions(s.frame, positions, threads, wrapped);
+    if (!(cutoff > 0) || n == 0 || (options.query && options.query->empty())) {
         s.atoms = detail::AtomTable();
-        s.query.clear();
         state_ = std::move(state); // no pair can count: an empty search
         return;
     }
-    s.cutoff_sq = detail::strict_threshold_sq(cutoff);
-    s.estimated_pairs = detail::estimated_system_pairs(box, n, wrapped.lower, wrapped.upper, cutoff,
-                                                       options.half && !subset) *
-                        (double(query_size) / double(n));
+    const detail::BuildPlan plan =
+        detail::plan_build(options, s.frame.box(), wrapped, cutoff, s.search_radius,
+                           query.empty() ? n : s.query_atoms);
+    s.estimated_pairs = plan.estimated_pairs;
     detail::ListLimits(options, n).check_estimate(s.estimated_pairs, cutoff);
 
-    const SearchBackend kind =
-        options.backend == SearchBackend::automatic
-            ? detail::automatic_backend(box, wrapped.fractional, wrapped.lower, wrapped.upper,
-                                        s.search_radius, options)
-            : options.backend;
-    s.backend = &s.pool.get(kind);
+    s.backend = &s.pool.get(plan.backend);
     std::vector<std::uint32_t> order;
-    s.backend->bin(detail::BinningInput{box, wrapped.fractional, wrapped.lower, wrapped.upper,
-                                        s.search_radius, options, threads,
-                                        detail::cell_cap(options, n)},
+    s.backend->bin(detail::BinningInput{s.frame.box(), wrapped.fractional, wrapped.lower,
+                                        wrapped.upper, s.search_radius, options, plan},
                    order);
-    detail::fill_atom_table(s.h, positions, wrapped.image, std::move(order), threads, s.atoms);
-    s.query.resize(subset ? n : 0);
-    for (std::size_t k = 0; k < s.query.size(); ++k) {
-        s.query[k] = query[s.atoms.index[k]];
-    }
+    detail::fill_atom_table(s.frame.box().matrix(), positions, wrapped, std::move(order), query,
+                            threads, s.atoms);
     state_ = std::move(state);
 }
 
@@ -117,7 +102,7 @@ void NeighborSearch::compute(NeighborList& out) const {
         detail::fail<InvalidArgument>("NeighborSearch::compute() needs a successful build() first");
     }
     const detail::SearchState& s = *state_;
-    PairColumns& columns = out.columns();
+    PairColumns& columns = detail::ListAccess::columns(out);
     if (!s.backend) {
         if (s.options.with_offsets()) {
             columns.offsets.assign(s.atom_count + 1, 0);
@@ -129,57 +114,41 @@ void NeighborSearch::compute(NeighborList& out) const {
     const auto columns_of = [&](PairColumns& c) {
         return detail::stored_columns(c, keep_shifts, q.distances, q.vectors);
     };
-    const std::size_t units = s.backend->unit_count();
-    const std::size_t threads = detail::compute_threads(s.options, s.estimated_pairs, units);
-    const detail::TeamScope team(threads);
+    const detail::ListLimits limits(s.options, s.atom_count);
+    detail::ComputeInput input;
+    input.estimated_pairs = s.estimated_pairs;
+    input.box_volume = s.frame.box().volume();
+    input.max_cutoff = s.rule.max_cutoff();
+    input.atoms = s.atom_count;
+    input.query_atoms = s.query_atoms;
+    s.backend->occupancy(input.occupancy);
+    input.neighbours = [&] { return s.backend->neighbours(); };
+    input.claim = detail::PairSink::block_size;
+    const detail::ComputePlan plan = detail::plan_compute(s.options, input, limits);
+    const detail::TeamScope team(plan.threads);
     try {
-        // Expected pairs of each unit, from its occupancy (sizes the columns).
-        detail::UnitOccupancy occupancy;
-        s.backend->occupancy(occupancy);
-        const double sphere = 4.0 / 3.0 * pi * std::pow(s.rule.max_cutoff(), 3);
-        const double box_volume = std::abs(s.h.determinant());
-        // A subset search: the query's share of the pairs, for both halves of a full scan.
-        const double share =
-            s.query.empty() ? 1.0 : double(s.options.query->size()) / double(s.atom_count);
-        std::vector<double> expected(units);
-        double total = 0;
-        for (std::size_t u = 0; u < units; ++u) {
-            expected[u] =
-                (s.options.half && s.query.empty() ? 0.5 : share) *
-                expected_pairs(occupancy.atoms[u], occupancy.volume[u] * box_volume, sphere);
-            total += expected[u];
-        }
-        // Room for one claim of hits past the limits, so that a list reaching them is refused
-        // there, not by a growth it would not need.
-        const detail::ListLimits limits(s.options, s.atom_count);
-        const std::size_t room = detail::pair_room(
-            total, limits.pairs() == 0 ? 0 : limits.pairs() + detail::PairSink::block_size);
-        if (threads == 1) {
-            detail::PairSink sink(columns_of(columns), limits, room);
+        if (plan.threads == 1) {
+            detail::PairSink sink(columns_of(columns), limits, plan.room);
             detail::CandidateScanner scan = s.scanner(sink);
-            s.backend->visit(0, units, scan);
+            s.backend->visit(0, s.backend->unit_count(), scan);
             sink.finish();
         } else {
-            std::vector<double> work(units);
-            const double neighbours = s.backend->neighbours();
-            for (std::size_t u = 0; u < units; ++u) {
-                work[u] = occupancy_work(occupancy.atoms[u], neighbours);
-            }
-            const detail::BatchPlan plan = detail::plan_batches(work, expected, threads);
-            detail::ordered_search(columns_of(columns), plan, std::max(room, columns.i.capacity()),
-                                   limits, threads, out.thread_columns(), columns_of,
-                                   [&](std::size_t b, detail::PairSink& sink) {
-                                       detail::CandidateScanner scan = s.scanner(sink);
-                                       s.backend->visit(plan.bounds[b], plan.bounds[b + 1], scan);
-                                   });
+            const detail::BatchPlan& batches = plan.batches;
+            detail::write_in_unit_order(
+                columns_of(columns), batches, std::max(plan.room, columns.i.capacity()), limits,
+                plan.threads, detail::ListAccess::thread_columns(out), columns_of,
+                [&](std::size_t b, detail::PairSink& sink) {
+                    detail::CandidateScanner scan = s.scanner(sink);
+                    s.backend->visit(batches.bounds[b], batches.bounds[b + 1], scan);
+                });
         }
-        if (s.reduced_frame && keep_shifts) {
-            detail::to_caller_frame(columns.shifts, s.to_caller);
+        if (keep_shifts) {
+            s.frame.to_caller(columns.shifts.data(), columns.size());
         }
         if (s.options.sorted) {
             detail::sort_pairs(columns, s.atom_count);
         } else if (s.options.grouped) {
-            detail::group_pairs(columns, s.atom_count, out.order_scratch());
+            detail::group_pairs(columns, s.atom_count, detail::ListAccess::order_scratch(out));
         }
         if (!q.shifts) {
             columns.shifts.clear();
@@ -200,7 +169,7 @@ void NeighborSearch::for_each_block(void (*on_block)(void*, const PairBlock&),
     if (!s.backend) {
         return;
     }
-    detail::PairSink sink(on_block, context, s.to_caller, s.reduced_frame);
+    detail::PairSink sink(on_block, context, &s.frame);
     detail::CandidateScanner scan = s.scanner(sink);
     s.backend->visit(0, s.backend->unit_count(), scan);
     sink.finish();
@@ -212,7 +181,7 @@ SearchInfo NeighborSearch::info() const {
         return info;
     }
     const detail::SearchState& s = *state_;
-    info.reduced_frame = s.reduced_frame;
+    info.reduced_frame = s.frame.reduced();
     info.estimated_pairs = s.estimated_pairs;
     info.search_radius = s.search_radius;
     if (s.backend) {
@@ -238,7 +207,7 @@ UnitWork NeighborSearch::unit_work() const {
     work.estimated.resize(units);
     work.measured.resize(units);
     auto discard = [](void*, const PairBlock&) {};
-    detail::PairSink sink(discard, nullptr, s.to_caller, false);
+    detail::PairSink sink(discard, nullptr, nullptr);
     const double neighbours = s.backend->neighbours();
     for (std::size_t u = 0; u < units; ++u) {
         work.estimated[u] = occupancy_work(occupancy.atoms[u], neighbours);

@@ -5,8 +5,8 @@
 
 #include <gtest/gtest.h>
 
-#include "policy/cost_model.hpp"
 #include "mpi_support.hpp"
+#include "policy/cost_model.hpp"
 #include "support/expect_throw_msg.hpp"
 #include "tricell/error.hpp"
 

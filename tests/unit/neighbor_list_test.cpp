@@ -263,8 +263,8 @@ TEST(NeighborList, RejectsPositionTooFarToWrap) {
 }
 
 TEST(NeighborList, BatchedOutputEqualsBruteForceForAnyThreadCount) {
-    // The batched in-place output of 2 to 4 threads (lib/output/unit_ordered_batches.hpp) against one
-    // thread storing directly and against brute force: a list of about 294000 pairs, and
+    // The batched in-place output of 2 to 4 threads (lib/output/unit_ordered_batches.hpp) against
+    // one thread storing directly and against brute force: a list of about 294000 pairs, and
     // clustered atoms whose list is several times the per-cell estimate, so the final columns
     // must grow while batches are copied in.
     // The large lists reuse one list object (its per-thread batch columns too); the clustered
