@@ -37,8 +37,6 @@ exclude_patterns = [".git", "build*"]
 # Markdown: anchors for the headings of every level the pages link to (`cpp.md#verlet-lists`).
 myst_heading_anchors = 4
 myst_enable_extensions = ["dollarmath"]
-# docs/layout.md goes from its title to a third-level heading; the pages render the same.
-suppress_warnings = ["myst.header"]
 
 # The C++ and C API, from Doxygen's XML of include/.
 breathe_projects = {"tricell": os.environ.get("TRICELL_DOXYGEN_XML", "")}
