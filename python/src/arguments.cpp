@@ -274,28 +274,109 @@ DoubleArray pair_value_array(const py::handle& values, const char* name, py::ssi
     return a;
 }
 
-Periodicity periodicity(const py::handle& periodic, const char* name) {
-    const py::array a = numpy_array(periodic, name);
+namespace {
+
+// Periodic flags of any shape as int64 0 and 1: bools, or the integers 0 and 1.
+py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>
+periodic_flags(const py::array& a, const char* name) {
     const char kind = a.dtype().kind();
     if (kind != 'b' && kind != 'i' && kind != 'u') {
         throw py::type_error(std::string(name) + " must be bools, not " +
                              (kind == 'f' ? "float" : kind_name(kind)) + " (got " + got(a) + ")");
     }
-    if (!(a.ndim() == 0 || (a.ndim() == 1 && a.shape(0) == 3))) {
-        value_error(std::string(name) + " must be a bool or three bools (got shape " + shape_of(a) +
-                    ")");
-    }
-    const py::array_t<std::int64_t, py::array::c_style | py::array::forcecast> flags(a);
-    Periodicity pbc;
-    for (std::size_t k = 0; k < 3; ++k) {
-        const std::int64_t v = flags.data()[a.ndim() == 0 ? 0 : k];
+    py::array_t<std::int64_t, py::array::c_style | py::array::forcecast> flags(a);
+    for (py::ssize_t k = 0; k < flags.size(); ++k) {
+        const std::int64_t v = flags.data()[k];
         if (v != 0 && v != 1) {
             value_error(std::string(name) + " must be bools, or the integers 0 and 1 (got " +
                         std::to_string(v) + ", dtype " + dtype_of(a) + ")");
         }
-        pbc.axes[k] = v == 1;
+    }
+    return flags;
+}
+
+// The three axes from flags[first], or flags[first + k] for k < 3 (`one`: one value for all).
+Periodicity axes_from(const std::int64_t* flags, bool one) {
+    Periodicity pbc;
+    for (std::size_t k = 0; k < 3; ++k) {
+        pbc.axes[k] = flags[one ? 0 : k] == 1;
     }
     return pbc;
+}
+
+} // namespace
+
+Periodicity periodicity(const py::handle& periodic, const char* name) {
+    const py::array a = numpy_array(periodic, name);
+    if (!(a.ndim() == 0 || (a.ndim() == 1 && a.shape(0) == 3))) {
+        periodic_flags(a, name); // a wrong kind of value is reported first
+        value_error(std::string(name) + " must be a bool or three bools (got shape " + shape_of(a) +
+                    ")");
+    }
+    return axes_from(periodic_flags(a, name).data(), a.ndim() == 0);
+}
+
+std::vector<Periodicity> periodicities(const py::handle& periodic, std::size_t count,
+                                       const char* name) {
+    const py::array a = numpy_array(periodic, name);
+    const auto flags = periodic_flags(a, name);
+    const bool shared = a.ndim() == 0 || (a.ndim() == 1 && a.shape(0) == 3);
+    if (shared) {
+        return std::vector<Periodicity>(count, axes_from(flags.data(), a.ndim() == 0));
+    }
+    if (a.ndim() != 2 || a.shape(1) != 3 || static_cast<std::size_t>(a.shape(0)) != count) {
+        value_error(std::string(name) + " must be one bool, three, or one row of three per " +
+                    "structure, shape (" + std::to_string(count) + ", 3) (got shape " +
+                    shape_of(a) + ")");
+    }
+    std::vector<Periodicity> out(count);
+    for (std::size_t s = 0; s < count; ++s) {
+        out[s] = axes_from(flags.data() + 3 * s, false);
+    }
+    return out;
+}
+
+std::vector<std::int64_t> batch_pointer(const py::handle& values, std::size_t points,
+                                        const char* name) {
+    const std::string label(name);
+    const py::array a = numpy_array(values, name);
+    if (a.size() == 0 && a.ndim() == 1) { // also [], which numpy makes float64
+        value_error(label + " must have B + 1 entries for B structures, at least one (got an " +
+                    "empty array)");
+    }
+    std::vector<std::int64_t> ptr = index_array(a, name, -1, 1, nullptr);
+    if (ptr[0] != 0) {
+        value_error(label + " must start at 0 (got " + label + "[0] = " + std::to_string(ptr[0]) +
+                    ")");
+    }
+    for (std::size_t s = 0; s + 1 < ptr.size(); ++s) {
+        if (ptr[s + 1] < ptr[s]) {
+            value_error(label + " must not decrease (got " + label + "[" + std::to_string(s) +
+                        "] = " + std::to_string(ptr[s]) + " > " + label + "[" +
+                        std::to_string(s + 1) + "] = " + std::to_string(ptr[s + 1]) +
+                        ": structure " + std::to_string(s) + " would have " +
+                        std::to_string(ptr[s + 1] - ptr[s]) + " atoms)");
+        }
+    }
+    if (static_cast<std::uint64_t>(ptr.back()) != points) {
+        value_error(label + " must end at the number of points, " + std::to_string(points) +
+                    " (got " + label + "[" + std::to_string(ptr.size() - 1) +
+                    "] = " + std::to_string(ptr.back()) + ")");
+    }
+    return ptr;
+}
+
+DoubleArray boxes_array(const py::handle& boxes, std::size_t count, const char* name) {
+    DoubleArray a = real_array(boxes, name);
+    const bool empty_list = count == 0 && a.ndim() == 1 && a.size() == 0;
+    if (!empty_list && (a.ndim() != 3 || static_cast<std::size_t>(a.shape(0)) != count ||
+                        a.shape(1) != 3 || a.shape(2) != 3)) {
+        value_error(
+            std::string(name) + " must have shape (" + std::to_string(count) +
+            ", 3, 3): one box per structure of batch_ptr, the lattice vectors as rows (got shape " +
+            shape_of(a) + ")");
+    }
+    return a;
 }
 
 Box box_from_rows(const py::handle& box, const py::handle& periodic, const char* box_name,

@@ -81,6 +81,19 @@ DoubleArray pair_value_array(const py::handle& values, const char* name, py::ssi
 /// Periodicity from one bool (every axis) or three.
 Periodicity periodicity(const py::handle& periodic, const char* name = "periodic");
 
+/// The periodicity of each of `count` structures of a batch: one bool or three for all of them,
+/// or one row of three per structure (shape (count, 3)).
+std::vector<Periodicity> periodicities(const py::handle& periodic, std::size_t count,
+                                       const char* name = "periodic");
+
+/// The pointer array of a concatenated batch: B + 1 integers starting at 0, never decreasing,
+/// ending at `points` (structure s owns rows ptr[s]:ptr[s + 1] of the points).
+std::vector<std::int64_t> batch_pointer(const py::handle& values, std::size_t points,
+                                        const char* name = "batch_ptr");
+
+/// `count` boxes of a batch, shape (count, 3, 3), the lattice vectors of each as rows.
+DoubleArray boxes_array(const py::handle& boxes, std::size_t count, const char* name = "boxes");
+
 /// A Box from lattice vectors as the rows of a 3 x 3 array-like, and `periodic` given as one
 /// bool or three.
 Box box_from_rows(const py::handle& box, const py::handle& periodic, const char* box_name = "box",

@@ -135,34 +135,68 @@ QuantitySpec parse_quantities(const std::string& letters) {
     return spec;
 }
 
-py::object pair_columns(const NeighborList& list, const QuantitySpec& spec,
-                        const std::shared_ptr<const NeighborList>& owner) {
-    py::object base;
-    if (owner) {
-        auto* keep = new std::shared_ptr<const NeighborList>(owner);
-        base = py::capsule(
-            keep, [](void* p) { delete static_cast<std::shared_ptr<const NeighborList>*>(p); });
+namespace {
+
+// A capsule holding a reference to `owner`: the base of the views of its buffers.
+template <class List> py::object keeper(const std::shared_ptr<const List>& owner) {
+    if (!owner) {
+        return py::object();
     }
-    return columns_of(list, spec, base);
+    auto* keep = new std::shared_ptr<const List>(owner);
+    return py::capsule(keep, [](void* p) { delete static_cast<std::shared_ptr<const List>*>(p); });
 }
 
-py::tuple batch_columns(const BatchList& list, const QuantitySpec& spec) {
+// i or j of a batch with each structure's first atom added: indices into all its atoms.
+py::array global_indices(const BatchList& list, const PairArray<std::uint32_t>& local) {
+    py::array_t<std::uint32_t> out(static_cast<py::ssize_t>(list.size()));
+    std::uint32_t* to = out.mutable_data();
+    const std::vector<std::size_t>& pairs = list.pair_offsets();
+    const std::vector<std::size_t>& atoms = list.atom_offsets();
+    for (std::size_t s = 0; s + 1 < pairs.size(); ++s) {
+        const auto first = static_cast<std::uint32_t>(atoms[s]);
+        for (std::size_t k = pairs[s]; k < pairs[s + 1]; ++k) {
+            to[k] = local[k] + first;
+        }
+    }
+    return std::move(out);
+}
+
+} // namespace
+
+py::object pair_columns(const NeighborList& list, const QuantitySpec& spec,
+                        const std::shared_ptr<const NeighborList>& owner) {
+    return columns_of(list, spec, keeper(owner));
+}
+
+py::tuple batch_columns(const BatchList& list, const QuantitySpec& spec,
+                        const std::shared_ptr<const BatchList>& owner, bool global) {
     const std::vector<std::size_t>& offsets = list.pair_offsets();
     py::array_t<std::int64_t> pair_offsets(static_cast<py::ssize_t>(offsets.size()));
     for (std::size_t s = 0; s < offsets.size(); ++s) {
         pair_offsets.mutable_data()[s] = static_cast<std::int64_t>(offsets[s]);
     }
     const std::size_t count = spec.columns.size();
-    py::object columns = columns_of(list, spec, py::object());
+    py::object columns = columns_of(list, spec, keeper(owner));
     py::tuple out(1 + count);
     out[0] = pair_offsets;
-    if (count == 1) {
-        out[1] = columns;
-    } else {
-        const py::tuple t = columns.cast<py::tuple>();
-        for (std::size_t k = 0; k < count; ++k) {
-            out[k + 1] = t[k];
+    for (std::size_t k = 0; k < count; ++k) {
+        py::object column = count == 1 ? columns : py::object(columns.cast<py::tuple>()[k]);
+        if (global && spec.columns[k] == Column::i) {
+            column = global_indices(list, list.i());
+        } else if (global && spec.columns[k] == Column::j) {
+            column = global_indices(list, list.j());
+        } else if (global && spec.columns[k] == Column::pairs) {
+            const py::array_t<std::uint32_t> i = global_indices(list, list.i());
+            const py::array_t<std::uint32_t> j = global_indices(list, list.j());
+            py::array_t<std::uint32_t> pairs(
+                std::vector<py::ssize_t>{static_cast<py::ssize_t>(list.size()), 2});
+            for (std::size_t m = 0; m < list.size(); ++m) {
+                pairs.mutable_data()[2 * m] = i.data()[m];
+                pairs.mutable_data()[2 * m + 1] = j.data()[m];
+            }
+            column = pairs;
         }
+        out[k + 1] = column;
     }
     return out;
 }

@@ -45,8 +45,11 @@ QuantitySpec parse_quantities(const std::string& letters);
 py::object pair_columns(const NeighborList& list, const QuantitySpec& spec,
                         const std::shared_ptr<const NeighborList>& owner);
 
-/// The lists of a batch, always copied: a tuple of the per-structure pair offsets (int64,
-/// structures + 1) followed by the columns of `spec` over all structures.
-py::tuple batch_columns(const BatchList& list, const QuantitySpec& spec);
+/// The lists of a batch: a tuple of the per-structure pair offsets (int64, structures + 1)
+/// followed by the columns of `spec` over all structures, views whose base holds `owner` when it
+/// is set, copies otherwise. `global`: i and j (and P) index all structures' atoms (each
+/// structure's atom offset added), as fresh arrays.
+py::tuple batch_columns(const BatchList& list, const QuantitySpec& spec,
+                        const std::shared_ptr<const BatchList>& owner, bool global);
 
 } // namespace tricell::python

@@ -8,6 +8,7 @@
 // viewed), so a view never changes under the caller and a loop that drops its previous
 // results reuses the same memory call after call. The GIL is released during every search; a
 // mutex serialises calls on one object from several Python threads.
+#include <cctype>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -110,7 +111,7 @@ class PyNeighborList {
         {
             py::gil_scoped_release release;
             std::lock_guard<std::mutex> lock(mutex_);
-            list = free_list();
+            list = free_entry(pool_);
             search_.build(search_box, view, options);
             search_.compute(*list);
         }
@@ -119,9 +120,12 @@ class PyNeighborList {
 
     // One list per structure of a batch (compute_neighbors_batch), the NeighborList's options
     // for all; the inputs are converted (and checked, each naming its structure) with the GIL
-    // held, the search runs without it.
+    // held, the search runs without it. Without batch_ptr the structures come as sequences of
+    // arrays; with it as the concatenated format (points N_total x 3, boxes B x 3 x 3), and i
+    // and j index the concatenated points.
     py::tuple compute_batch(const py::handle& points, const py::handle& boxes,
-                            const py::handle& periodic, const std::string& quantities) {
+                            const py::handle& periodic, const std::string& quantities,
+                            const py::handle& batch_ptr, bool copy) {
         if (per_atom_radii_ || !options_.species_cutoffs.empty()) {
             throw py::value_error("compute_batch needs a NeighborList made with one float cutoff");
         }
@@ -129,6 +133,45 @@ class PyNeighborList {
         const QuantitySpec spec = parse_quantities(quantities);
         options.quantities = spec.stored;
         require_offsets_if_asked(spec);
+        std::vector<DoubleArray> arrays;
+        std::vector<BatchStructure> structures;
+        std::vector<std::int64_t> ptr;
+        if (batch_ptr.is_none()) {
+            structures = listed_structures(points, boxes, periodic, arrays);
+        } else {
+            arrays.push_back(points_array(points));
+            ptr = batch_pointer(batch_ptr, std::size_t(arrays[0].shape(0)));
+            structures = concatenated_structures(arrays[0], ptr, boxes, periodic);
+        }
+        std::shared_ptr<BatchList> batch;
+        try {
+            py::gil_scoped_release release;
+            std::lock_guard<std::mutex> lock(mutex_);
+            batch = free_entry(batch_pool_);
+            compute_neighbors_batch(structures, options, *batch);
+        } catch (const PairLimitError&) {
+            throw;
+        } catch (const Error& e) {
+            if (ptr.empty()) {
+                throw;
+            }
+            throw py::value_error(with_rows_of_points(e.what(), ptr));
+        }
+        return batch_columns(*batch, spec, copy ? nullptr : batch, !ptr.empty());
+    }
+
+    bool full() const { return !options_.half; }
+    bool sorted() const { return options_.sorted; }
+    bool grouped() const { return options_.grouped; }
+    int threads() const { return options_.threads; }
+
+  private:
+    // The structures of the list form: a sequence of N_s x 3 arrays (kept alive in `arrays`),
+    // one of 3 x 3 boxes, and one periodicity for all or one per structure.
+    static std::vector<BatchStructure> listed_structures(const py::handle& points,
+                                                         const py::handle& boxes,
+                                                         const py::handle& periodic,
+                                                         std::vector<DoubleArray>& arrays) {
         const py::sequence xs = checked_sequence(points, "points");
         const py::sequence hs = checked_sequence(boxes, "boxes");
         if (hs.size() != xs.size()) {
@@ -143,7 +186,6 @@ class PyNeighborList {
                                   " entries for " + std::to_string(xs.size()) +
                                   " structures (of points)");
         }
-        std::vector<DoubleArray> arrays;
         std::vector<BatchStructure> structures;
         arrays.reserve(xs.size());
         structures.reserve(xs.size());
@@ -163,20 +205,56 @@ class PyNeighborList {
                 detail::rethrow_for_structure(s);
             }
         }
-        {
-            py::gil_scoped_release release;
-            std::lock_guard<std::mutex> lock(mutex_);
-            compute_neighbors_batch(structures, options, batch_);
-        }
-        return batch_columns(batch_, spec);
+        return structures;
     }
 
-    bool full() const { return !options_.half; }
-    bool sorted() const { return options_.sorted; }
-    bool grouped() const { return options_.grouped; }
-    int threads() const { return options_.threads; }
+    // The structures of the concatenated form: structure s owns rows ptr[s]:ptr[s + 1] of
+    // `points` and boxes[s]; a box the library refuses is reported with its index.
+    static std::vector<BatchStructure> concatenated_structures(const DoubleArray& points,
+                                                               const std::vector<std::int64_t>& ptr,
+                                                               const py::handle& boxes,
+                                                               const py::handle& periodic) {
+        const std::size_t count = ptr.size() - 1;
+        const DoubleArray h = boxes_array(boxes, count);
+        const std::vector<Periodicity> pbc = periodicities(periodic, count);
+        std::vector<BatchStructure> structures;
+        structures.reserve(count);
+        for (std::size_t s = 0; s < count; ++s) {
+            const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> rows(h.data() +
+                                                                                      9 * s);
+            try {
+                structures.push_back(BatchStructure{
+                    Box::from_rows(rows, pbc[s]),
+                    PointsView(points.data() + 3 * ptr[s], std::size_t(ptr[s + 1] - ptr[s]))});
+            } catch (const Error& e) {
+                throw py::value_error("structure " + std::to_string(s) + ", boxes[" +
+                                      std::to_string(s) + "]: " + e.what());
+            }
+        }
+        return structures;
+    }
 
-  private:
+    // A library message "structure S: ..." about the concatenated form, with the rows of the
+    // points structure S owns: "structure 3, points[100:110]: position 2 is not finite ...".
+    static std::string with_rows_of_points(const std::string& message,
+                                           const std::vector<std::int64_t>& ptr) {
+        const std::string prefix = "structure ";
+        std::size_t end = prefix.size();
+        while (end < message.size() && std::isdigit(static_cast<unsigned char>(message[end]))) {
+            ++end;
+        }
+        if (message.compare(0, prefix.size(), prefix) != 0 || end == prefix.size() ||
+            message.compare(end, 2, ": ") != 0) {
+            return message;
+        }
+        const std::size_t s = std::stoul(message.substr(prefix.size(), end - prefix.size()));
+        if (s + 1 >= ptr.size()) {
+            return message;
+        }
+        return message.substr(0, end) + ", points[" + std::to_string(ptr[s]) + ":" +
+               std::to_string(ptr[s + 1]) + "]" + message.substr(end);
+    }
+
     // 'o' (per-atom offsets) exists only for a list grouped by i.
     void require_offsets_if_asked(const QuantitySpec& spec) const {
         if (spec.offsets && !options_.with_offsets()) {
@@ -187,11 +265,12 @@ class PyNeighborList {
 
     // A pooled list no view refers to (the pool's own reference is the only one), or a new
     // one. Keeps at most two unviewed lists, so memory follows what the caller still holds.
-    std::shared_ptr<NeighborList> free_list() {
-        std::shared_ptr<NeighborList> chosen;
-        std::vector<std::shared_ptr<NeighborList>> kept;
+    template <class List>
+    static std::shared_ptr<List> free_entry(std::vector<std::shared_ptr<List>>& pool) {
+        std::shared_ptr<List> chosen;
+        std::vector<std::shared_ptr<List>> kept;
         int unviewed = 0;
-        for (auto& entry : pool_) {
+        for (auto& entry : pool) {
             const bool viewed = entry.use_count() > 1;
             if (!viewed && !chosen) {
                 chosen = entry;
@@ -200,10 +279,10 @@ class PyNeighborList {
             }
             kept.push_back(std::move(entry));
         }
-        pool_ = std::move(kept);
+        pool = std::move(kept);
         if (!chosen) {
-            chosen = std::make_shared<NeighborList>();
-            pool_.push_back(chosen);
+            chosen = std::make_shared<List>();
+            pool.push_back(chosen);
         }
         return chosen;
     }
@@ -211,8 +290,8 @@ class PyNeighborList {
     NeighborOptions options_;
     bool per_atom_radii_ = false;
     NeighborSearch search_;
-    BatchList batch_; // of compute_batch(), kept for its buffers
     std::vector<std::shared_ptr<NeighborList>> pool_;
+    std::vector<std::shared_ptr<BatchList>> batch_pool_; // of compute_batch(), the same way
     std::mutex mutex_;
 };
 
@@ -321,15 +400,24 @@ neighbour: a full list the (i, j, S) with i in query, a half list each pair with
 query once and each pair with one end in it once, i being that end.)doc")
         .def("compute_batch", &PyNeighborList::compute_batch, py::arg("points"), py::arg("boxes"),
              py::arg("periodic") = true, py::arg("quantities") = "ijSd",
+             py::arg("batch_ptr") = py::none(), py::arg("copy") = true,
              R"doc(
 The lists of many independent structures in one call (one cutoff for all; threads work across
-structures). points: a sequence of N_s x 3 arrays; boxes: a sequence of 3 x 3 arrays (lattice
-vectors as rows), one per structure; periodic: one bool or three for every structure, or one
-such entry per structure. Returns a tuple (offsets, *columns): offsets (int64, structures + 1)
-gives structure s the pairs offsets[s]:offsets[s + 1] of every column, and the columns are
-those of compute() (always copies) over all structures, i and j numbering the atoms of their
-own structure ('o': atom a of structure s has the pairs o[k]:o[k + 1], k = its index among all
-structures' atoms). Each structure gets exactly the list compute() gives it alone.)doc")
+structures). Two forms:
+- batch_ptr given (the concatenated format of machine-learning codes): points is N_total x 3,
+  the atoms of all structures one after the other; batch_ptr (B + 1 integers from 0 to N_total,
+  never decreasing) gives structure s the rows batch_ptr[s]:batch_ptr[s + 1]; boxes is
+  B x 3 x 3; i and j index the rows of points (global indices);
+- batch_ptr=None: points is a sequence of N_s x 3 arrays and boxes one of 3 x 3 arrays, one per
+  structure; i and j number the atoms of their own structure.
+Boxes have the lattice vectors as rows; periodic is one bool or three for every structure, or
+one row of three per structure (B x 3). Returns a tuple (offsets, *columns): offsets (int64,
+B + 1) gives structure s the pairs offsets[s]:offsets[s + 1] of every column, and the columns
+are those of compute() over all structures ('o': atom a of structure s has the pairs
+o[k]:o[k + 1], k = its index among all structures' atoms). copy=False returns views, as
+compute() does. Each structure gets exactly the pairs compute() gives it alone; no pair joins
+two structures. Errors name the argument and the structure (boxes[17], points[100:110]) and
+return nothing.)doc")
         .def_property_readonly("full", &PyNeighborList::full,
                                "True: both (i, j) and (j, i); False: each pair once.")
         .def_property_readonly("sorted", &PyNeighborList::sorted,

@@ -1,6 +1,7 @@
 """NeighborList.compute_batch: every structure's slice equals its own compute() call, array for
 array and in order (full and half, sorted or not, any thread count, periodicity per structure
-or shared), and errors name the structure."""
+or shared), in the list form and in the concatenated form (batch_ptr, global i and j), and
+errors name the argument and the structure."""
 import numpy as np
 import pytest
 
@@ -75,3 +76,125 @@ def test_batch_errors_name_the_structure():
         nl.compute_batch([x], [np.eye(3)], True, "ix")
     with pytest.raises(ValueError, match=r"compute_batch needs a NeighborList made with one float cutoff"):
         tricell.NeighborList(None).compute_batch([x], [np.eye(3)])
+
+
+def concatenated(points, boxes, pbcs):
+    """The concatenated format of a list-form batch: (points, boxes, periodic, batch_ptr)."""
+    ptr = np.concatenate([[0], np.cumsum([len(x) for x in points])]).astype(np.int64)
+    x = np.concatenate(points) if points else np.zeros((0, 3))
+    return x, np.array(boxes).reshape(-1, 3, 3), np.array(pbcs, dtype=bool).reshape(-1, 3), ptr
+
+
+@pytest.mark.parametrize("seed", range(40))
+def test_concatenated_batch_equals_one_call_per_structure_with_global_indices(seed):
+    points, boxes, pbcs, cutoff = random_batch(seed)
+    rng = np.random.default_rng(seed + 11)
+    full, sorted_ = bool(rng.integers(2)), bool(rng.integers(2))
+    threads, copy = int(rng.integers(0, 3)), bool(rng.integers(2))
+    batch = tricell.NeighborList(cutoff, full=full, sorted=sorted_, threads=threads)
+    one = tricell.NeighborList(cutoff, full=full, sorted=sorted_)
+    x, h, pbc, ptr = concatenated(points, boxes, pbcs)
+    offsets, *columns = batch.compute_batch(x, h, pbc, LETTERS + "P", batch_ptr=ptr, copy=copy)
+    assert offsets.dtype == np.int64 and offsets.shape == (len(points) + 1,)
+    assert offsets[0] == 0 and offsets[-1] == len(columns[0])
+    for s in range(len(points)):
+        alone = one.compute(points[s], boxes[s], pbcs[s], LETTERS + "P")
+        shift = {"i": ptr[s], "j": ptr[s], "P": ptr[s]}
+        for letter, mine, expected in zip(LETTERS + "P", columns, alone):
+            got = mine[offsets[s]:offsets[s + 1]]
+            assert got.dtype == expected.dtype, f"seed {seed} structure {s} {letter}"
+            assert np.array_equal(got, expected + shift.get(letter, 0)), \
+                f"seed {seed} structure {s} {letter}"
+
+
+def test_both_forms_agree_and_periodic_takes_every_shape():
+    points, boxes, pbcs, cutoff = random_batch(3)
+    x, h, per_structure, ptr = concatenated(points, boxes, pbcs)
+    nl = tricell.NeighborList(cutoff, grouped=True)
+    for pbc in (True, False, [True, False, True], per_structure, per_structure.astype(int)):
+        listed = nl.compute_batch(points, boxes, pbc, "ijSdo")
+        offsets, i, j, S, d, o = nl.compute_batch(x, h, pbc, "ijSdo", batch_ptr=ptr)
+        assert np.array_equal(offsets, listed[0]) and np.array_equal(o, listed[5])
+        atom_first = np.repeat(ptr[:-1], np.diff(offsets))
+        assert np.array_equal(i, listed[1] + atom_first)
+        assert np.array_equal(j, listed[2] + atom_first)
+        assert np.array_equal(S, listed[3]) and np.array_equal(d, listed[4])
+
+
+def test_no_pair_joins_two_structures_that_overlap_in_space():
+    """The same atoms three times over, one structure each, and an empty structure between."""
+    cell, positions, pbc, cutoff, _ = random_system(4, pbc=(True, True, False))
+    x = np.concatenate([positions, positions, positions])
+    n = len(positions)
+    ptr = np.array([0, n, n, 2 * n, 3 * n])
+    h = np.array([cell] * 4)
+    offsets, i, j = tricell.NeighborList(cutoff).compute_batch(x, h, pbc, "ij", batch_ptr=ptr)
+    alone = len(tricell.NeighborList(cutoff).compute(positions, cell, pbc, "i"))
+    assert list(np.diff(offsets)) == [alone, 0, alone, alone]
+    for s in range(4):
+        rows = slice(offsets[s], offsets[s + 1])
+        assert np.all((i[rows] >= ptr[s]) & (i[rows] < ptr[s + 1]))
+        assert np.all((j[rows] >= ptr[s]) & (j[rows] < ptr[s + 1]))
+
+
+def test_empty_concatenated_batches():
+    nl = tricell.NeighborList(1.0)
+    for x, h in ((np.zeros((0, 3)), np.zeros((0, 3, 3))), ([], [])):
+        offsets, i, d = nl.compute_batch(x, h, True, "id", batch_ptr=[0])
+        assert list(offsets) == [0] and i.shape == (0,) and d.shape == (0,)
+    offsets, i = nl.compute_batch(np.zeros((0, 3)), np.array([np.eye(3)] * 2), True, "i",
+                                  batch_ptr=[0, 0, 0])
+    assert list(offsets) == [0, 0, 0] and i.shape == (0,)
+
+
+def test_views_of_a_concatenated_batch_outlive_the_next_call():
+    points, boxes, pbcs, cutoff = random_batch(6)
+    x, h, pbc, ptr = concatenated(points, boxes, pbcs)
+    nl = tricell.NeighborList(cutoff)
+    first = nl.compute_batch(x, h, pbc, "Sd", batch_ptr=ptr, copy=False)
+    kept = [a.copy() for a in first]
+    nl.compute_batch(x + 0.1, h, pbc, "Sd", batch_ptr=ptr, copy=False)
+    assert all(np.array_equal(a, b) for a, b in zip(first, kept))
+
+
+def test_concatenated_errors_name_the_argument_and_the_structure():
+    rng = np.random.default_rng(0)
+    x = rng.random((40, 3)) * 3
+    ptr = np.arange(0, 41, 2)  # 20 structures of 2 atoms
+    h = np.array([np.eye(3) * 3] * 20)
+    nl = tricell.NeighborList(2.0)
+    call = lambda **changes: nl.compute_batch(  # noqa: E731
+        **{"points": x, "boxes": h, "periodic": True, "quantities": "ij", "batch_ptr": ptr,
+           **changes})
+    with pytest.raises(ValueError, match=r"^batch_ptr must start at 0 \(got batch_ptr\[0\] = 1\)$"):
+        call(batch_ptr=np.concatenate([[1], ptr[1:]]))
+    bad = ptr.copy()
+    bad[5] = 3
+    with pytest.raises(ValueError, match=r"^batch_ptr must not decrease \(got batch_ptr\[4\] = 8 > "
+                                         r"batch_ptr\[5\] = 3: structure 4 would have -5 atoms\)$"):
+        call(batch_ptr=bad)
+    with pytest.raises(ValueError, match=r"^batch_ptr must end at the number of points, 40 \(got "
+                                         r"batch_ptr\[20\] = 38\)$"):
+        call(batch_ptr=np.concatenate([ptr[:-1], [38]]))
+    with pytest.raises(ValueError, match=r"^batch_ptr must have B \+ 1 entries"):
+        call(batch_ptr=[])
+    with pytest.raises(TypeError, match=r"^batch_ptr must be integers, not float"):
+        call(batch_ptr=ptr.astype(float))
+    with pytest.raises(ValueError, match=r"^boxes must have shape \(20, 3, 3\): one box per "
+                                         r"structure of batch_ptr.*\(got shape \(19, 3, 3\)\)$"):
+        call(boxes=h[:19])
+    with pytest.raises(ValueError, match=r"^periodic must be one bool, three, or one row of three "
+                                         r"per structure, shape \(20, 3\) \(got shape \(2, 3\)\)$"):
+        call(periodic=[[True] * 3] * 2)
+    with pytest.raises(ValueError, match=r"^points must be an array of shape \(N, 3\)"):
+        call(points=x[:, :2])
+    singular = h.copy()
+    singular[17] = [[3, 0, 0], [6, 0, 0], [0, 0, 3]]
+    with pytest.raises(ValueError, match=r"^structure 17, boxes\[17\]: "):
+        call(boxes=singular)
+    nan = x.copy()
+    nan[7, 2] = np.nan
+    with pytest.raises(ValueError, match=r"^structure 3, points\[6:8\]: position 1 is not finite"):
+        call(points=nan)
+    with pytest.raises(ValueError, match=r"max_pairs"):
+        tricell.NeighborList(2.0, max_pairs=3).compute_batch(x, h, True, "ij", batch_ptr=ptr)

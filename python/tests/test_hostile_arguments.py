@@ -33,8 +33,8 @@ SPECIES = RNG.integers(1, 3, ATOMS)
 TABLE = {(1, 1): 1.5, (1, 2): 2.0, (2, 2): 2.5}
 
 # What each rule accepts and what a clean input of it is.
-ACCEPTS = {"real": "fiu", "species": "fiu", "periodic": "biu"}
-CANONICAL = {"real": np.float64, "species": np.int64, "periodic": np.bool_}
+ACCEPTS = {"real": "fiu", "species": "fiu", "periodic": "biu", "index": "iu"}
+CANONICAL = {"real": np.float64, "species": np.int64, "periodic": np.bool_, "index": np.int64}
 
 
 def every_dtype():
@@ -120,6 +120,12 @@ def array_likes(value):
         out.append(("ragged list", [rows[0][:2]] + rows[1:], ValueError))
         out.append(("list with None", [[None] + rows[0][1:]] + rows[1:], TypeError))
         out.append(("list with a numeric str", [["1.0"] + rows[0][1:]] + rows[1:], TypeError))
+    elif value.ndim == 3:  # one array of structures: the odd value in place of one number
+        first = [[None] + rows[0][0][1:]] + rows[0][1:]
+        out.append(("ragged list", [rows[:2]] + rows[2:], ValueError))
+        out.append(("list with None", [first] + rows[1:], TypeError))
+        first = [["1.0"] + rows[0][0][1:]] + rows[0][1:]
+        out.append(("list with a numeric str", [first] + rows[1:], TypeError))
     else:
         out.append(("ragged list", [rows[:2]] + rows[2:], ValueError))
         out.append(("list with None", [None] + rows[1:], TypeError))
@@ -190,6 +196,20 @@ CASES = [
      lambda x: tricell.NeighborList(1.8).compute_batch([P, P], x, Q, "ijSd")),
     ("NeighborList.compute_batch (S, 3)", "periodic", "periodic", np.array([Q, [1, 0, 1]], bool),
      lambda x: tricell.NeighborList(1.8).compute_batch([P, P], [B, B], x, "ijSd")),
+    ("NeighborList.compute_batch (batch_ptr)", "points", "real", np.vstack([P, P[::-1]]),
+     lambda x: tricell.NeighborList(1.8).compute_batch(x, [B, B], Q, "ijSd",
+                                                       batch_ptr=[0, ATOMS, 2 * ATOMS])),
+    ("NeighborList.compute_batch (batch_ptr)", "boxes", "real", np.stack([B, 1.1 * B]),
+     lambda x: tricell.NeighborList(1.8).compute_batch(np.vstack([P, P]), x, Q, "ijSd",
+                                                       batch_ptr=[0, ATOMS, 2 * ATOMS])),
+    ("NeighborList.compute_batch (batch_ptr)", "periodic", "periodic",
+     np.array([Q, [1, 0, 1]], bool),
+     lambda x: tricell.NeighborList(1.8).compute_batch(np.vstack([P, P]), [B, B], x, "ijSd",
+                                                       batch_ptr=[0, ATOMS, 2 * ATOMS])),
+    ("NeighborList.compute_batch (batch_ptr)", "batch_ptr", "index",
+     np.array([0, 3, 2 * ATOMS]),
+     lambda x: tricell.NeighborList(1.8).compute_batch(np.vstack([P, P]), [B, B], Q, "ijSd",
+                                                       batch_ptr=x)),
     ("VerletList.update", "points", "real", P,
      lambda x: tricell.VerletList(1.8, 0.3).update(x, B, Q, "ijSd")),
     ("VerletList.update", "box", "real", B,

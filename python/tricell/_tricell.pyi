@@ -38,10 +38,12 @@ class NeighborList:
     ) -> Union[np.ndarray, Tuple[np.ndarray, ...]]: ...
     def compute_batch(
         self,
-        points: Sequence[ArrayLike],
-        boxes: Sequence[ArrayLike],
+        points: Union[ArrayLike, Sequence[ArrayLike]],
+        boxes: Union[ArrayLike, Sequence[ArrayLike]],
         periodic: Union[Periodic, Sequence[Periodic]] = True,
         quantities: str = "ijSd",
+        batch_ptr: Optional[ArrayLike] = None,
+        copy: bool = True,
     ) -> Tuple[np.ndarray, ...]: ...
     @property
     def full(self) -> bool: ...

@@ -93,6 +93,32 @@ def check_native_api(ns):
     assert ns["s"].positions.shape == (9, 3), "quartz: 9 atoms"
 
 
+def batch_inputs():
+    from ase.build import bulk
+
+    structures = [bulk("Si", "diamond", a=5.43, cubic=True), bulk("Cu", "fcc", a=3.6),
+                  bulk("NaCl", "rocksalt", a=5.64) * (2, 1, 1)]
+    for k, atoms in enumerate(structures):
+        atoms.rattle(0.05, seed=k)
+    ptr = np.cumsum([0] + [len(a) for a in structures])
+    return dict(positions=np.concatenate([a.positions for a in structures]),
+                cells=np.array([a.cell[:] for a in structures]),
+                pbc=np.array([a.pbc for a in structures]), ptr=ptr, structures=structures)
+
+
+def check_batch(ns):
+    from ase.neighborlist import neighbor_list
+
+    offsets, ptr = ns["offsets"], ns["ptr"]
+    for s, atoms in enumerate(ns["structures"]):
+        rows = slice(offsets[s], offsets[s + 1])
+        theirs = neighbor_list("ijS", atoms, 5.0)
+        ours = (ns["i"][rows] - ptr[s], ns["j"][rows] - ptr[s], ns["S"][rows])
+        key = lambda i, j, S: sorted(zip(i.tolist(), j.tolist(), map(tuple, S.tolist())))  # noqa: E731
+        assert key(*ours) == key(*theirs), "structure %d: ASE's pairs" % s
+    np.testing.assert_allclose(np.linalg.norm(ns["D"], axis=1), ns["d"], atol=1e-12)
+
+
 def verify_inputs():
     import ase.neighborlist  # noqa: F401 - the block calls ase.neighborlist.neighbor_list
 
@@ -198,6 +224,7 @@ def check_torch(ns):
 HARNESS = {
     ("The native API", 1): (native_api_inputs, check_native_api),
     ("The native API", 2): (verify_inputs, check_verify),
+    ("Batches for machine learning", 1): (batch_inputs, check_batch),
     ("Drop-in for ASE", 1): (lambda: dict(atoms=silicon()), check_ase_function),
     ("Drop-in for ASE", 2): (ase_class_inputs, check_ase_class),
     ("Drop-in for pymatgen", 1): (pymatgen_inputs, check_pymatgen),
