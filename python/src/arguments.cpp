@@ -3,6 +3,8 @@
 // by their Python type.
 #include "arguments.hpp"
 
+#include "batch_layout.hpp"
+
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -338,30 +340,14 @@ std::vector<Periodicity> periodicities(const py::handle& periodic, std::size_t c
 
 std::vector<std::int64_t> batch_pointer(const py::handle& values, std::size_t points,
                                         const char* name) {
-    const std::string label(name);
     const py::array a = numpy_array(values, name);
     if (a.size() == 0 && a.ndim() == 1) { // also [], which numpy makes float64
-        value_error(label + " must have B + 1 entries for B structures, at least one (got an " +
-                    "empty array)");
+        value_error(batch_pointer_problem(nullptr, 0, points, name));
     }
     std::vector<std::int64_t> ptr = index_array(a, name, -1, 1, nullptr);
-    if (ptr[0] != 0) {
-        value_error(label + " must start at 0 (got " + label + "[0] = " + std::to_string(ptr[0]) +
-                    ")");
-    }
-    for (std::size_t s = 0; s + 1 < ptr.size(); ++s) {
-        if (ptr[s + 1] < ptr[s]) {
-            value_error(label + " must not decrease (got " + label + "[" + std::to_string(s) +
-                        "] = " + std::to_string(ptr[s]) + " > " + label + "[" +
-                        std::to_string(s + 1) + "] = " + std::to_string(ptr[s + 1]) +
-                        ": structure " + std::to_string(s) + " would have " +
-                        std::to_string(ptr[s + 1] - ptr[s]) + " atoms)");
-        }
-    }
-    if (static_cast<std::uint64_t>(ptr.back()) != points) {
-        value_error(label + " must end at the number of points, " + std::to_string(points) +
-                    " (got " + label + "[" + std::to_string(ptr.size() - 1) +
-                    "] = " + std::to_string(ptr.back()) + ")");
+    const std::string problem = batch_pointer_problem(ptr.data(), ptr.size(), points, name);
+    if (!problem.empty()) {
+        value_error(problem);
     }
     return ptr;
 }

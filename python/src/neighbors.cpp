@@ -8,7 +8,6 @@
 // viewed), so a view never changes under the caller and a loop that drops its previous
 // results reuses the same memory call after call. The GIL is released during every search; a
 // mutex serialises calls on one object from several Python threads.
-#include <cctype>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -23,6 +22,7 @@
 #include <tricell/verlet.hpp>
 
 #include "arguments.hpp"
+#include "batch_layout.hpp"
 #include "columns.hpp"
 
 namespace tricell::python {
@@ -155,7 +155,7 @@ class PyNeighborList {
             if (ptr.empty()) {
                 throw;
             }
-            throw py::value_error(with_rows_of_points(e.what(), ptr));
+            throw py::value_error(with_rows_of(e.what(), ptr.data(), ptr.size(), "points"));
         }
         return batch_columns(*batch, spec, copy ? nullptr : batch, !ptr.empty());
     }
@@ -232,27 +232,6 @@ class PyNeighborList {
             }
         }
         return structures;
-    }
-
-    // A library message "structure S: ..." about the concatenated form, with the rows of the
-    // points structure S owns: "structure 3, points[100:110]: position 2 is not finite ...".
-    static std::string with_rows_of_points(const std::string& message,
-                                           const std::vector<std::int64_t>& ptr) {
-        const std::string prefix = "structure ";
-        std::size_t end = prefix.size();
-        while (end < message.size() && std::isdigit(static_cast<unsigned char>(message[end]))) {
-            ++end;
-        }
-        if (message.compare(0, prefix.size(), prefix) != 0 || end == prefix.size() ||
-            message.compare(end, 2, ": ") != 0) {
-            return message;
-        }
-        const std::size_t s = std::stoul(message.substr(prefix.size(), end - prefix.size()));
-        if (s + 1 >= ptr.size()) {
-            return message;
-        }
-        return message.substr(0, end) + ", points[" + std::to_string(ptr[s]) + ":" +
-               std::to_string(ptr[s + 1]) + "]" + message.substr(end);
     }
 
     // 'o' (per-atom offsets) exists only for a list grouped by i.

@@ -9,10 +9,7 @@
 // where gradients flow. Every argument is checked here, and a message names the argument and
 // what it got; the library's own errors (a non-finite position, a singular cell, a pair limit)
 // come through as RuntimeError with the library's message.
-#include <cmath>
 #include <cstdint>
-#include <sstream>
-#include <string>
 #include <tuple>
 
 #include <torch/library.h>
@@ -22,41 +19,22 @@
 #include <tricell/error.hpp>
 #include <tricell/neighbor_list.hpp>
 
+#include "op_arguments.hpp"
+
 namespace {
 
-std::string shape_of(const at::Tensor& tensor) {
-    std::ostringstream text;
-    text << tensor.sizes();
-    return text.str();
-}
-
-// A float32 or float64 tensor on the CPU; `name` is the argument in messages.
-void check_real_cpu(const at::Tensor& tensor, const char* name) {
-    TORCH_CHECK(tensor.scalar_type() == at::kFloat || tensor.scalar_type() == at::kDouble,
-                "neighbor_pairs: ", name, " must be float32 or float64 (got ", tensor.scalar_type(),
-                ")");
-    TORCH_CHECK(tensor.device().is_cpu(), "neighbor_pairs: ", name,
-                " must be on the CPU (got device ", tensor.device(), ")");
-}
+using namespace tricell::torch_ops; // op_arguments.hpp
 
 void check_arguments(const at::Tensor& positions, const at::Tensor& cell,
                      const c10::List<bool>& periodic, double cutoff) {
-    TORCH_CHECK(positions.dim() == 2 && positions.size(1) == 3,
-                "neighbor_pairs: positions must be an N x 3 tensor (got shape ",
-                shape_of(positions), ")");
+    check_positions_and_cell("neighbor_pairs", positions, cell, "cell");
     TORCH_CHECK(cell.dim() == 2 && cell.size(0) == 3 && cell.size(1) == 3,
                 "neighbor_pairs: cell must be a 3 x 3 tensor with the lattice vectors as rows "
                 "(got shape ",
                 shape_of(cell), ")");
-    check_real_cpu(positions, "positions");
-    check_real_cpu(cell, "cell");
-    TORCH_CHECK(cell.scalar_type() == positions.scalar_type(),
-                "neighbor_pairs: cell must have the dtype of positions (got ", cell.scalar_type(),
-                " for cell and ", positions.scalar_type(), " for positions)");
     TORCH_CHECK(periodic.size() == 3, "neighbor_pairs: periodic must be three bools (got ",
                 periodic.size(), ")");
-    TORCH_CHECK(std::isfinite(cutoff) && cutoff > 0,
-                "neighbor_pairs: cutoff must be finite and > 0 (got ", cutoff, ")");
+    check_cutoff("neighbor_pairs", cutoff);
 }
 
 std::tuple<at::Tensor, at::Tensor, at::Tensor> neighbor_pairs(const at::Tensor& positions,
@@ -67,13 +45,6 @@ std::tuple<at::Tensor, at::Tensor, at::Tensor> neighbor_pairs(const at::Tensor& 
     const at::Tensor x = positions.detach().to(at::kDouble).contiguous();
     const at::Tensor h = cell.detach().to(at::kDouble).contiguous();
 
-    Eigen::Matrix3d rows;
-    const double* h_data = h.data_ptr<double>();
-    for (int r = 0; r < 3; ++r) {
-        for (int c = 0; c < 3; ++c) {
-            rows(r, c) = h_data[3 * r + c];
-        }
-    }
     tricell::Periodicity pbc;
     for (std::size_t axis = 0; axis < 3; ++axis) {
         pbc.axes[axis] = periodic[axis];
@@ -89,7 +60,7 @@ std::tuple<at::Tensor, at::Tensor, at::Tensor> neighbor_pairs(const at::Tensor& 
     try {
         const auto n = static_cast<std::size_t>(x.size(0));
         const tricell::PointsView points(n == 0 ? nullptr : x.data_ptr<double>(), n);
-        tricell::compute_neighbors(tricell::Box::from_rows(rows, pbc), points, options, list);
+        tricell::compute_neighbors(box_from_rows(h.data_ptr<double>(), pbc), points, options, list);
     } catch (const tricell::Error& error) {
         TORCH_CHECK(false, "neighbor_pairs: ", error.what());
     }

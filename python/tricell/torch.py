@@ -3,13 +3,17 @@
     import torch, tricell.torch
     nl = tricell.torch.NeighborList(cutoff=5.0, full=True)
     i, j, S, D, d = nl(points, box, [True, True, True], "ijSDd")
+    offsets, i, j, S, D, d = nl.compute_batch(points, boxes, pbc, batch_ptr, "ijSDd")
+    mapping, system_mapping, shifts_idx = tricell.torch.torchsim_nl(
+        positions, cell, pbc, cutoff, system_idx)
 
-The pairs (i, j, S) come from the op torch.ops.tricell.neighbor_pairs (the op library
-_tricell_torch.so next to this file, loaded on import), which runs tricell's search on detached
-float64 copies and returns int64 tensors. D = points[j] - points[i] + S @ box and d = |D| are
-computed here with ordinary torch ops, so gradients flow through points and box, in eager mode
-and in TorchScript alike; D and d have the dtype of the inputs (float32 or float64). Boxes have
-the lattice vectors as rows; periodic is a list of three bools.
+The pairs (i, j, S) come from the ops torch.ops.tricell.neighbor_pairs (one structure) and
+torch.ops.tricell.batch_pairs (a batch in the concatenated layout) of the op library
+_tricell_torch.so next to this file, loaded on import; they run tricell's search on detached
+float64 copies and return int64 tensors. D = points[j] - points[i] + S @ box and d = |D| are
+computed here with ordinary torch ops, so gradients flow through points and every box, in eager
+mode and in TorchScript alike; D and d have the dtype of the inputs (float32 or float64). Boxes
+have the lattice vectors as rows.
 
 Importing raises ImportError when the op library was not built (tricell configured without
 libtorch, or the sanitizer build) or when PyTorch is missing.
@@ -24,13 +28,13 @@ if not os.path.exists(_OP_LIBRARY):
         "and TRICELL_BUILD_TORCH=ON, outside a sanitizer build",
         name="tricell._tricell_torch", path=_OP_LIBRARY)
 
-from typing import List  # noqa: E402
+from typing import List, Tuple  # noqa: E402
 
 import torch  # noqa: E402
 
 torch.ops.load_library(_OP_LIBRARY)
 
-__all__ = ["NeighborList", "QUANTITIES"]
+__all__ = ["NeighborList", "QUANTITIES", "torchsim_nl"]
 
 QUANTITIES = "ijSDd"
 """The letters compute() takes: i, j (int64), S (int64, pairs x 3), D (pairs x 3), d."""
@@ -39,18 +43,21 @@ QUANTITIES = "ijSDd"
 class NeighborList(torch.nn.Module):
     """Periodic neighbour list of a cutoff for torch tensors (see the module docstring).
 
-    NeighborList(cutoff, full=True): pairs with d < cutoff, except (i, i, 0); full=False keeps
-    each pair once (i < j, or i == j with S lexicographically positive), as tricell.NeighborList
-    does. Calling the module is compute(points, box, periodic, quantities)."""
+    NeighborList(cutoff, full=True, threads=1): pairs with d < cutoff, except (i, i, 0);
+    full=False keeps each pair once (i < j, or i == j with S lexicographically positive), as
+    tricell.NeighborList does; threads work across the structures of compute_batch (0: every
+    core). Calling the module is compute(points, box, periodic, quantities)."""
 
     cutoff: float
     full: bool
+    threads: int
     letters: torch.jit.Final[str] = QUANTITIES
 
-    def __init__(self, cutoff: float, full: bool = True):
+    def __init__(self, cutoff: float, full: bool = True, threads: int = 1):
         super().__init__()
         self.cutoff = float(cutoff)
         self.full = bool(full)
+        self.threads = int(threads)
 
     def forward(self, points: torch.Tensor, box: torch.Tensor, periodic: List[bool],
                 quantities: str = QUANTITIES) -> List[torch.Tensor]:
@@ -61,29 +68,121 @@ class NeighborList(torch.nn.Module):
                 quantities: str = QUANTITIES) -> List[torch.Tensor]:
         """The tensors of the letters of quantities, in their order, for N x 3 points and a
         3 x 3 box (rows are lattice vectors) of one dtype on the CPU."""
+        self._check_letters(quantities)
+        i, j, S = torch.ops.tricell.neighbor_pairs(points, box, periodic, self.cutoff, self.full)
+        D = torch.empty(0)
+        if "D" in quantities or "d" in quantities:
+            D = points.index_select(0, j) - points.index_select(0, i) + S.to(box.dtype) @ box
+        return _columns(quantities, i, j, S, D)
+
+    @torch.jit.export
+    def compute_batch(self, points: torch.Tensor, boxes: torch.Tensor, periodic: torch.Tensor,
+                      batch_ptr: torch.Tensor, quantities: str = QUANTITIES) -> List[torch.Tensor]:
+        """The lists of a batch in one call, in the concatenated layout: points N x 3 (all
+        structures one after the other), boxes B x 3 x 3 (rows are lattice vectors; one 3 x 3
+        box for all), periodic B x 3 or 3 bools, batch_ptr B + 1 integers (structure s owns
+        rows batch_ptr[s]:batch_ptr[s + 1]). Returns [offsets, *the letters of quantities]:
+        structure s owns pairs offsets[s]:offsets[s + 1]; i and j index the rows of points; D
+        and d flow gradients to points and to each structure's box."""
+        self._check_letters(quantities)
+        count = batch_ptr.shape[0] - 1 if batch_ptr.dim() == 1 else -1
+        if boxes.dim() == 2 and count >= 0:
+            boxes = boxes.expand(count, 3, 3)
+        if periodic.dim() == 1 and count >= 0:
+            periodic = periodic.expand(count, 3)
+        i, j, S, offsets = torch.ops.tricell.batch_pairs(
+            points, boxes, periodic, batch_ptr, self.cutoff, self.full, self.threads)
+        D = torch.empty(0)
+        if "D" in quantities or "d" in quantities:
+            system = torch.repeat_interleave(torch.arange(count), offsets[1:] - offsets[:-1])
+            shift = torch.bmm(S.to(boxes.dtype).unsqueeze(1), boxes.index_select(0, system))
+            D = points.index_select(0, j) - points.index_select(0, i) + shift.squeeze(1)
+        return [offsets] + _columns(quantities, i, j, S, D)
+
+    def _check_letters(self, quantities: str):
         for letter in quantities:
             if letter not in self.letters:
                 raise ValueError(f"quantities: unknown letter '{letter}' in '{quantities}' "
                                  f"(letters of '{self.letters}')")
-        i, j, S = torch.ops.tricell.neighbor_pairs(points, box, periodic, self.cutoff, self.full)
-        D = torch.empty(0)
-        d = torch.empty(0)
-        if "D" in quantities or "d" in quantities:
-            D = points.index_select(0, j) - points.index_select(0, i) + S.to(box.dtype) @ box
-            d = torch.linalg.norm(D, dim=1)
-        out: List[torch.Tensor] = []
-        for letter in quantities:
-            if letter == "i":
-                out.append(i)
-            elif letter == "j":
-                out.append(j)
-            elif letter == "S":
-                out.append(S)
-            elif letter == "D":
-                out.append(D)
-            else:
-                out.append(d)
-        return out
 
     def extra_repr(self) -> str:
-        return f"cutoff={self.cutoff}, full={self.full}"
+        return f"cutoff={self.cutoff}, full={self.full}, threads={self.threads}"
+
+
+def _columns(quantities: str, i: torch.Tensor, j: torch.Tensor, S: torch.Tensor,
+             D: torch.Tensor) -> List[torch.Tensor]:
+    """The tensors of the letters of quantities, in their order (D empty unless asked)."""
+    d = torch.linalg.norm(D, dim=1) if "d" in quantities else torch.empty(0)
+    out: List[torch.Tensor] = []
+    for letter in quantities:
+        if letter == "i":
+            out.append(i)
+        elif letter == "j":
+            out.append(j)
+        elif letter == "S":
+            out.append(S)
+        elif letter == "D":
+            out.append(D)
+        else:
+            out.append(d)
+    return out
+
+
+def torchsim_nl(positions: torch.Tensor, cell: torch.Tensor, pbc: torch.Tensor, cutoff: float,
+                system_idx: torch.Tensor, self_interaction: bool = False
+                ) -> Tuple[torch.Tensor, torch.Tensor, torch.Tensor]:
+    """TorchSim's neighbour-list function (torch_sim.neighbors.torchsim_nl), one tricell batch
+    call for all systems: the full list of every system within cutoff.
+
+    positions [N, 3]; cell [B, 3, 3] or [3, 3] (rows are lattice vectors); pbc [B, 3] or [3];
+    system_idx [N] integers, the system of each atom, each system's atoms contiguous and in
+    order (B = len(cell), or system_idx.max() + 1 for one 3 x 3 cell). Returns mapping [2, P]
+    int64 (i, j, indices into positions), system_mapping [P] int64 and shifts_idx [P, 3] in the
+    dtype of positions, with positions[j] - positions[i] + shifts_idx @ cell[system] the
+    pair's vector; self_interaction=True appends (k, k, 0) for every atom. On the device of
+    positions (the search runs on the CPU)."""
+    if system_idx.dim() != 1 or system_idx.shape[0] != positions.shape[0]:
+        raise ValueError(f"torchsim_nl: system_idx must have one entry per atom, shape "
+                         f"[{positions.shape[0]}] (got shape {list(system_idx.shape)})")
+    if system_idx.is_floating_point() or system_idx.dtype == torch.bool:
+        raise ValueError(f"torchsim_nl: system_idx must hold integers (got {system_idx.dtype})")
+    if pbc.is_floating_point() or pbc.is_complex():
+        raise ValueError(f"torchsim_nl: pbc must be bools (got {pbc.dtype})")
+    device = positions.device
+    systems = system_idx.detach().to(torch.device("cpu"), torch.int64)
+    if cell.dim() == 3:
+        count = cell.shape[0]
+    elif systems.shape[0] > 0:
+        count = int(systems.max()) + 1
+    else:
+        count = 1
+    if systems.shape[0] > 0:
+        steps = systems[1:] - systems[:-1]
+        if bool((steps < 0).any()):
+            k = int(torch.nonzero(steps < 0)[0, 0]) + 1
+            raise ValueError(f"torchsim_nl: system_idx must not decrease, each system's atoms "
+                             f"contiguous (got system_idx[{k}] = {int(systems[k])} after "
+                             f"system_idx[{k - 1}] = {int(systems[k - 1])})")
+        if int(systems[0]) < 0 or int(systems[-1]) >= count:
+            raise ValueError(f"torchsim_nl: system_idx must lie in [0, {count}), one system per "
+                             f"cell (got values from {int(systems[0])} to {int(systems[-1])})")
+    ptr = torch.zeros(count + 1, dtype=torch.int64)
+    ptr[1:] = torch.cumsum(torch.bincount(systems, minlength=count), 0)
+    cpu = torch.device("cpu")
+    cells = cell.detach().to(cpu)
+    flags = pbc.detach().to(cpu, torch.bool)
+    if cells.dim() == 2:
+        cells = cells.expand(count, 3, 3)
+    if flags.dim() == 1:
+        flags = flags.expand(count, 3)
+    i, j, S, offsets = torch.ops.tricell.batch_pairs(
+        positions.detach().to(cpu), cells, flags, ptr, float(cutoff), True, 1)
+    system_mapping = torch.repeat_interleave(torch.arange(count), offsets[1:] - offsets[:-1])
+    mapping = torch.stack([i, j])
+    shifts = S.to(positions.dtype)
+    if self_interaction:
+        atoms = torch.arange(positions.shape[0])
+        mapping = torch.cat([mapping, torch.stack([atoms, atoms])], dim=1)
+        system_mapping = torch.cat([system_mapping, systems])
+        shifts = torch.cat([shifts, torch.zeros(positions.shape[0], 3, dtype=shifts.dtype)])
+    return mapping.to(device), system_mapping.to(device), shifts.to(device)

@@ -220,6 +220,41 @@ def check_torch(ns):
     assert ns["cell_gradient"].shape == (3, 3)
 
 
+def torch_batch_inputs():
+    torch_inputs()  # skips, with the reason, where PyTorch or the op library is missing
+    import torch
+    import tricell.torch
+
+    ns = batch_inputs()
+    return dict(torch=torch, tricell=tricell,
+                positions=torch.tensor(ns["positions"], requires_grad=True),
+                cells=torch.tensor(ns["cells"], requires_grad=True),
+                pbc=torch.tensor(ns["pbc"]), batch_ptr=torch.tensor(ns["ptr"]),
+                structures=ns["structures"])
+
+
+def check_torch_batch(ns):
+    import torch
+    from ase.neighborlist import neighbor_list
+
+    for s, atoms in enumerate(ns["structures"]):
+        their = neighbor_list("ijS", atoms, 5.0)
+        mine = ns["system_mapping"] == s
+        first = int(ns["batch_ptr"][s])
+        key = lambda i, j, S: sorted(zip(i.tolist(), j.tolist(), map(tuple, S.tolist())))  # noqa: E731
+        assert key(ns["mapping"][0, mine] - first, ns["mapping"][1, mine] - first,
+                   ns["shifts_idx"][mine].long()) == key(*their), "structure %d" % s
+    # The stress of each structure alone, through the single-structure list.
+    nl = ns["tricell"].torch.NeighborList(5.0)
+    for s, atoms in enumerate(ns["structures"]):
+        x = torch.tensor(atoms.positions, requires_grad=True)
+        h = torch.tensor(atoms.cell[:], requires_grad=True)
+        (D,) = nl(x, h, [True] * 3, "D")
+        gx, gh = torch.autograd.grad((D.norm(dim=1) ** -6).sum(), (x, h))
+        alone = (x.detach().T @ gx + h.detach().T @ gh) / abs(float(torch.linalg.det(h)))
+        torch.testing.assert_close(ns["stress"][s], alone, rtol=1e-10, atol=1e-12)
+
+
 # (heading, place under it) -> (the names the block takes as given, the checks afterwards).
 HARNESS = {
     ("The native API", 1): (native_api_inputs, check_native_api),
@@ -230,6 +265,7 @@ HARNESS = {
     ("Drop-in for pymatgen", 1): (pymatgen_inputs, check_pymatgen),
     ("Drop-in for MDAnalysis", 1): (dict, check_mdanalysis),
     ("PyTorch", 1): (torch_inputs, check_torch),
+    ("PyTorch", 2): (torch_batch_inputs, check_torch_batch),
 }
 
 BLOCKS = page_blocks()

@@ -1,0 +1,59 @@
+// What every op of the PyTorch op library checks of its tensors, with messages naming the op,
+// the argument and what it got ("neighbor_pairs: positions must be float32 or float64 (got
+// Long)"), and how it hands tricell's arrays over.
+#pragma once
+
+#include <cstdint>
+#include <sstream>
+#include <string>
+
+#include <torch/types.h>
+
+#include <tricell/box.hpp>
+
+namespace tricell::torch_ops {
+
+inline std::string shape_of(const at::Tensor& tensor) {
+    std::ostringstream text;
+    text << tensor.sizes();
+    return text.str();
+}
+
+/// A float32 or float64 tensor on the CPU.
+inline void check_real_cpu(const char* op, const at::Tensor& tensor, const char* name) {
+    TORCH_CHECK(tensor.scalar_type() == at::kFloat || tensor.scalar_type() == at::kDouble, op, ": ",
+                name, " must be float32 or float64 (got ", tensor.scalar_type(), ")");
+    TORCH_CHECK(tensor.device().is_cpu(), op, ": ", name, " must be on the CPU (got device ",
+                tensor.device(), ")");
+}
+
+/// N x 3 positions and a cell of the same real dtype on the CPU (the cell's shape is the caller's
+/// to check).
+inline void check_positions_and_cell(const char* op, const at::Tensor& positions,
+                                     const at::Tensor& cell, const char* cell_name) {
+    TORCH_CHECK(positions.dim() == 2 && positions.size(1) == 3, op,
+                ": positions must be an N x 3 tensor (got shape ", shape_of(positions), ")");
+    check_real_cpu(op, positions, "positions");
+    check_real_cpu(op, cell, cell_name);
+    TORCH_CHECK(cell.scalar_type() == positions.scalar_type(), op, ": ", cell_name,
+                " must have the dtype of positions (got ", cell.scalar_type(), " for ", cell_name,
+                " and ", positions.scalar_type(), " for positions)");
+}
+
+inline void check_cutoff(const char* op, double cutoff) {
+    TORCH_CHECK(std::isfinite(cutoff) && cutoff > 0, op, ": cutoff must be finite and > 0 (got ",
+                cutoff, ")");
+}
+
+/// The 3 x 3 matrix at `rows` (row-major: the lattice vectors as rows) as a Box.
+inline Box box_from_rows(const double* rows, const Periodicity& pbc) {
+    Eigen::Matrix3d m;
+    for (int r = 0; r < 3; ++r) {
+        for (int c = 0; c < 3; ++c) {
+            m(r, c) = rows[3 * r + c];
+        }
+    }
+    return Box::from_rows(m, pbc);
+}
+
+} // namespace tricell::torch_ops
