@@ -255,6 +255,29 @@ def check_torch_batch(ns):
         torch.testing.assert_close(ns["stress"][s], alone, rtol=1e-10, atol=1e-12)
 
 
+def vesin_inputs():
+    torch_inputs()  # skips, with the reason, where PyTorch or the op library is missing
+    import torch
+
+    atoms = silicon()
+    atoms.rattle(0.05, seed=5)
+    return dict(torch=torch, atoms=atoms, positions=atoms.positions, cell=atoms.cell[:])
+
+
+def check_vesin(ns):
+    import torch
+    from ase.neighborlist import neighbor_list
+
+    atoms = ns["atoms"]
+    theirs = neighbor_list("ijSD", atoms, 5.0)
+    key = lambda i, j, S: sorted(zip(np.asarray(i).tolist(), np.asarray(j).tolist(),  # noqa: E731
+                                     map(tuple, np.asarray(S).tolist())))
+    ours = (ns["i"].numpy(), ns["j"].numpy())
+    assert sorted(zip(*ours)) == sorted(zip(theirs[0].tolist(), theirs[1].tolist()))
+    assert ns["D"].requires_grad is False and ns["D"].dtype == torch.float64
+    assert key(*ns["nl"].compute(atoms.positions, atoms.cell[:], True, "ijS")) == key(*theirs[:3])
+
+
 # (heading, place under it) -> (the names the block takes as given, the checks afterwards).
 HARNESS = {
     ("The native API", 1): (native_api_inputs, check_native_api),
@@ -264,6 +287,7 @@ HARNESS = {
     ("Drop-in for ASE", 2): (ase_class_inputs, check_ase_class),
     ("Drop-in for pymatgen", 1): (pymatgen_inputs, check_pymatgen),
     ("Drop-in for MDAnalysis", 1): (dict, check_mdanalysis),
+    ("Drop-in for vesin", 1): (vesin_inputs, check_vesin),
     ("PyTorch", 1): (torch_inputs, check_torch),
     ("PyTorch", 2): (torch_batch_inputs, check_torch_batch),
 }
