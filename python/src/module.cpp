@@ -23,6 +23,7 @@ void bind_displacement(py::module_& m);
 void bind_read(py::module_& m);
 void bind_analysis(py::module_& m);
 void bind_verify(py::module_& m);
+void bind_shells(py::module_& m);
 
 } // namespace tricell::python
 
@@ -68,4 +69,5 @@ PYBIND11_MODULE(_tricell, m) {
     tricell::python::bind_read(m);
     tricell::python::bind_analysis(m);
     tricell::python::bind_verify(m);
+    tricell::python::bind_shells(m);
 }

@@ -10,8 +10,11 @@
 // tricell::compute_neighbors_batch (threads across structures) on detached float64 copies of
 // the inputs, so each structure gets exactly the pairs of neighbor_pairs on it alone and no pair
 // joins two structures. Like neighbor_pairs it records nothing for autograd: tricell.torch
-// computes D and d from the pairs with ordinary torch ops. Messages name the argument and the
-// structure ("batch_pairs: structure 17, cells[17]: ...").
+// computes D and d from the pairs with ordinary torch ops. With `shells` (cutoffs, increasing,
+// none above the cutoff) the op also gives each pair's shell: the index of the first of them
+// above its distance d (len(shells) for d >= the last), by the search's own test d < r, so the
+// pairs a search at shells[k] stores are those of shell <= k. Messages name the argument and
+// the structure ("batch_pairs: structure 17, cells[17]: ...").
 #include <cstdint>
 #include <string>
 #include <tuple>
@@ -50,9 +53,10 @@ std::vector<std::int64_t> pointer_array(const at::Tensor& batch_ptr, std::size_t
     return out;
 }
 
-std::tuple<at::Tensor, at::Tensor, at::Tensor, at::Tensor>
+std::tuple<at::Tensor, at::Tensor, at::Tensor, at::Tensor, at::Tensor>
 batch_pairs(const at::Tensor& positions, const at::Tensor& cells, const at::Tensor& pbc,
-            const at::Tensor& batch_ptr, double cutoff, bool full, int64_t threads) {
+            const at::Tensor& batch_ptr, double cutoff, bool full, int64_t threads,
+            const c10::List<double>& shells) {
     check_positions_and_cell(op, positions, cells, "cells");
     check_cutoff(op, cutoff);
     const std::vector<std::int64_t> ptr = pointer_array(batch_ptr, std::size_t(positions.size(0)));
@@ -67,6 +71,12 @@ batch_pairs(const at::Tensor& positions, const at::Tensor& cells, const at::Tens
                 op, ": pbc must be a B x 3 bool tensor, one row per structure of batch_ptr (B = ",
                 count, "; got ", pbc.scalar_type(), " of shape ", shape_of(pbc), ")");
     TORCH_CHECK(threads >= 0, op, ": threads must be >= 0 (0: every core; got ", threads, ")");
+    const std::vector<double> radii(shells.begin(), shells.end());
+    for (std::size_t k = 0; k < radii.size(); ++k) {
+        TORCH_CHECK(radii[k] > 0 && radii[k] <= cutoff && (k == 0 || radii[k] > radii[k - 1]), op,
+                    ": shells[", k, "] = ", radii[k],
+                    " must be > 0, exceed the one before and be at most the cutoff, ", cutoff);
+    }
 
     const at::Tensor x = positions.detach().to(at::kDouble).contiguous();
     const at::Tensor h = cells.detach().to(at::kDouble).contiguous();
@@ -95,7 +105,7 @@ batch_pairs(const at::Tensor& positions, const at::Tensor& cells, const at::Tens
     options.half = !full;
     options.threads = int(threads);
     options.quantities.shifts = true;
-    options.quantities.distances = false;
+    options.quantities.distances = !radii.empty();
     options.quantities.vectors = false;
     tricell::BatchList list;
     try {
@@ -130,13 +140,26 @@ batch_pairs(const at::Tensor& positions, const at::Tensor& cells, const at::Tens
     for (std::size_t k = 0; k < 3 * list.size(); ++k) {
         s_out[k] = s_in[k];
     }
-    return {i, j, shifts, offsets};
+    at::Tensor shell = at::empty({radii.empty() ? 0 : pairs}, as_long);
+    if (!radii.empty()) {
+        std::int64_t* shell_out = shell.data_ptr<std::int64_t>();
+        for (std::size_t k = 0; k < list.size(); ++k) {
+            std::int64_t first_above = 0;
+            while (first_above < std::int64_t(radii.size()) &&
+                   !(list.distances()[k] < radii[std::size_t(first_above)])) {
+                ++first_above;
+            }
+            shell_out[k] = first_above;
+        }
+    }
+    return {i, j, shifts, offsets, shell};
 }
 
 } // namespace
 
 TORCH_LIBRARY_FRAGMENT(tricell, m) {
     m.def("batch_pairs(Tensor positions, Tensor cells, Tensor pbc, Tensor batch_ptr, float cutoff, "
-          "bool full=True, int threads=1) -> (Tensor i, Tensor j, Tensor S, Tensor offsets)",
+          "bool full=True, int threads=1, float[] shells=[]) -> (Tensor i, Tensor j, Tensor S, "
+          "Tensor offsets, Tensor shell)",
           &batch_pairs);
 }

@@ -2,8 +2,11 @@
 
 The native part (tricell._tricell, a pybind11 module over the C++ library) provides
 NeighborList, VerletList, DisplacementTracker (the Verlet rebuild rule on its own), Rdf,
-nearest_neighbors, read() and verify() (any code's list against an independent search); tricell.ase and tricell.pymatgen are drop-in replacements for
-ASE's and pymatgen's neighbour-list functions (and ASE's neighbour-list classes) built on it.
+nearest_neighbors, neighbor_shells (several cutoffs from one search), read() and verify() (any
+code's list against an independent search); neighbor_lists gives the lists a model requests
+(several cutoffs, full or half) from one search. tricell.ase, tricell.pymatgen,
+tricell.mdanalysis and tricell.vesin are drop-in replacements for those codes' neighbour-list
+functions built on it.
 
     import tricell
     nl = tricell.NeighborList(cutoff=5.0)
@@ -18,12 +21,13 @@ from typing import List, NamedTuple, Tuple
 
 import numpy as np
 
+from ._requests import neighbor_lists
 from ._tricell import (DisplacementTracker, NeighborList, Rdf, VerifyReport, VerletList,
-                       __version__, _read, backends, nearest_neighbors, verify)
+                       __version__, _read, backends, nearest_neighbors, neighbor_shells, verify)
 
 __all__ = [
     "NeighborList", "VerletList", "DisplacementTracker", "Rdf", "nearest_neighbors", "Structure",
-    "read", "backends", "verify", "VerifyReport",
+    "read", "backends", "verify", "VerifyReport", "neighbor_shells", "neighbor_lists",
 ]
 
 

@@ -123,6 +123,16 @@ def nearest_neighbors(
     threads: int = 1,
     backend: str = "auto",
 ) -> Tuple[np.ndarray, np.ndarray, np.ndarray]: ...
+def neighbor_shells(
+    points: ArrayLike,
+    box: ArrayLike,
+    periodic: Periodic,
+    cutoffs: Sequence[float],
+    quantities: str = "ijSd",
+    full: bool = True,
+    threads: int = 1,
+    copy: bool = True,
+) -> Tuple[np.ndarray, ...]: ...
 class VerifyReport:
     @property
     def ok(self) -> bool: ...

@@ -34,7 +34,7 @@ import torch  # noqa: E402
 
 torch.ops.load_library(_OP_LIBRARY)
 
-__all__ = ["NeighborList", "QUANTITIES", "torchsim_nl"]
+__all__ = ["NeighborList", "QUANTITIES", "torchsim_nl", "neighbor_lists", "neighbor_lists_batch"]
 
 QUANTITIES = "ijSDd"
 """The letters compute() takes: i, j (int64), S (int64, pairs x 3), D (pairs x 3), d."""
@@ -51,7 +51,6 @@ class NeighborList(torch.nn.Module):
     cutoff: float
     full: bool
     threads: int
-    letters: torch.jit.Final[str] = QUANTITIES
 
     def __init__(self, cutoff: float, full: bool = True, threads: int = 1):
         super().__init__()
@@ -68,11 +67,11 @@ class NeighborList(torch.nn.Module):
                 quantities: str = QUANTITIES) -> List[torch.Tensor]:
         """The tensors of the letters of quantities, in their order, for N x 3 points and a
         3 x 3 box (rows are lattice vectors) of one dtype on the CPU."""
-        self._check_letters(quantities)
+        _check_quantities(quantities)
         i, j, S = torch.ops.tricell.neighbor_pairs(points, box, periodic, self.cutoff, self.full)
         D = torch.empty(0)
         if "D" in quantities or "d" in quantities:
-            D = points.index_select(0, j) - points.index_select(0, i) + S.to(box.dtype) @ box
+            D = _vectors(points, box, i, j, S)
         return _columns(quantities, i, j, S, D)
 
     @torch.jit.export
@@ -84,29 +83,44 @@ class NeighborList(torch.nn.Module):
         rows batch_ptr[s]:batch_ptr[s + 1]). Returns [offsets, *the letters of quantities]:
         structure s owns pairs offsets[s]:offsets[s + 1]; i and j index the rows of points; D
         and d flow gradients to points and to each structure's box."""
-        self._check_letters(quantities)
+        _check_quantities(quantities)
         count = batch_ptr.shape[0] - 1 if batch_ptr.dim() == 1 else -1
         if boxes.dim() == 2 and count >= 0:
             boxes = boxes.expand(count, 3, 3)
         if periodic.dim() == 1 and count >= 0:
             periodic = periodic.expand(count, 3)
-        i, j, S, offsets = torch.ops.tricell.batch_pairs(
+        i, j, S, offsets, _ = torch.ops.tricell.batch_pairs(
             points, boxes, periodic, batch_ptr, self.cutoff, self.full, self.threads)
         D = torch.empty(0)
         if "D" in quantities or "d" in quantities:
-            system = torch.repeat_interleave(torch.arange(count), offsets[1:] - offsets[:-1])
-            shift = torch.bmm(S.to(boxes.dtype).unsqueeze(1), boxes.index_select(0, system))
-            D = points.index_select(0, j) - points.index_select(0, i) + shift.squeeze(1)
+            D = _batch_vectors(points, boxes, i, j, S, offsets)
         return [offsets] + _columns(quantities, i, j, S, D)
-
-    def _check_letters(self, quantities: str):
-        for letter in quantities:
-            if letter not in self.letters:
-                raise ValueError(f"quantities: unknown letter '{letter}' in '{quantities}' "
-                                 f"(letters of '{self.letters}')")
 
     def extra_repr(self) -> str:
         return f"cutoff={self.cutoff}, full={self.full}, threads={self.threads}"
+
+
+def _check_quantities(quantities: str):
+    """ValueError naming a letter of quantities that is not one of QUANTITIES."""
+    for letter in quantities:
+        if letter not in "ijSDd":  # QUANTITIES (TorchScript reads no global string)
+            raise ValueError(f"quantities: unknown letter '{letter}' in '{quantities}' "
+                             f"(letters of 'ijSDd')")
+
+
+def _vectors(points: torch.Tensor, box: torch.Tensor, i: torch.Tensor, j: torch.Tensor,
+             S: torch.Tensor) -> torch.Tensor:
+    """D = points[j] - points[i] + S @ box (differentiable in points and box)."""
+    return points.index_select(0, j) - points.index_select(0, i) + S.to(box.dtype) @ box
+
+
+def _batch_vectors(points: torch.Tensor, boxes: torch.Tensor, i: torch.Tensor, j: torch.Tensor,
+                   S: torch.Tensor, offsets: torch.Tensor) -> torch.Tensor:
+    """D = points[j] - points[i] + S @ boxes[s] for the pairs of each structure s (contiguous,
+    structure s owning pairs offsets[s]:offsets[s + 1])."""
+    system = torch.repeat_interleave(torch.arange(offsets.shape[0] - 1), offsets[1:] - offsets[:-1])
+    shift = torch.bmm(S.to(boxes.dtype).unsqueeze(1), boxes.index_select(0, system))
+    return points.index_select(0, j) - points.index_select(0, i) + shift.squeeze(1)
 
 
 def _columns(quantities: str, i: torch.Tensor, j: torch.Tensor, S: torch.Tensor,
@@ -175,7 +189,7 @@ def torchsim_nl(positions: torch.Tensor, cell: torch.Tensor, pbc: torch.Tensor, 
         cells = cells.expand(count, 3, 3)
     if flags.dim() == 1:
         flags = flags.expand(count, 3)
-    i, j, S, offsets = torch.ops.tricell.batch_pairs(
+    i, j, S, offsets, _ = torch.ops.tricell.batch_pairs(
         positions.detach().to(cpu), cells, flags, ptr, float(cutoff), True, 1)
     system_mapping = torch.repeat_interleave(torch.arange(count), offsets[1:] - offsets[:-1])
     mapping = torch.stack([i, j])
@@ -186,3 +200,84 @@ def torchsim_nl(positions: torch.Tensor, cell: torch.Tensor, pbc: torch.Tensor, 
         system_mapping = torch.cat([system_mapping, systems])
         shifts = torch.cat([shifts, torch.zeros(positions.shape[0], 3, dtype=shifts.dtype)])
     return mapping.to(device), system_mapping.to(device), shifts.to(device)
+
+
+
+def _requested_cutoffs(requests: List[Tuple[float, bool]]) -> Tuple[List[float], bool]:
+    """The distinct cutoffs of the requests, increasing, and whether every request is full
+    (then the search is a full list; otherwise a half list, full lists derived from it)."""
+    if len(requests) == 0:
+        raise ValueError("requests must hold at least one request (got none)")
+    cutoffs: List[float] = []
+    search_full = True
+    for request in requests:
+        if request[0] not in cutoffs:
+            cutoffs.append(request[0])
+        search_full = search_full and request[1]
+    return sorted(cutoffs), search_full
+
+
+def _with_reversals(i: torch.Tensor, j: torch.Tensor, S: torch.Tensor
+                    ) -> Tuple[torch.Tensor, torch.Tensor, torch.Tensor]:
+    """A full list from a half one: each pair, then each reversed (j, i, -S)."""
+    return torch.cat([i, j]), torch.cat([j, i]), torch.cat([S, -S])
+
+
+def neighbor_lists(points: torch.Tensor, box: torch.Tensor, periodic: List[bool],
+                   requests: List[Tuple[float, bool]], quantities: str = QUANTITIES
+                   ) -> List[List[torch.Tensor]]:
+    """The lists of several requests (cutoff, full) from one search at the largest cutoff
+    (torch.ops.tricell.neighbor_shells): one list of tensors per request, in their order, the
+    letters of quantities as NeighborList(cutoff, full).compute gives them, with exactly its
+    pairs (in the order of the shells) and D and d differentiable in points and box."""
+    _check_quantities(quantities)
+    cutoffs, search_full = _requested_cutoffs(requests)
+    i, j, S, offsets = torch.ops.tricell.neighbor_shells(points, box, periodic, cutoffs,
+                                                         search_full)
+    out: List[List[torch.Tensor]] = []
+    for request in requests:
+        n = int(offsets[cutoffs.index(request[0]) + 1])
+        ri, rj, rS = i[:n], j[:n], S[:n]
+        if request[1] and not search_full:
+            ri, rj, rS = _with_reversals(ri, rj, rS)
+        D = torch.empty(0)
+        if "D" in quantities or "d" in quantities:
+            D = _vectors(points, box, ri, rj, rS)
+        out.append(_columns(quantities, ri, rj, rS, D))
+    return out
+
+
+def neighbor_lists_batch(points: torch.Tensor, boxes: torch.Tensor, periodic: torch.Tensor,
+                         batch_ptr: torch.Tensor, requests: List[Tuple[float, bool]],
+                         quantities: str = QUANTITIES, threads: int = 1
+                         ) -> List[List[torch.Tensor]]:
+    """neighbor_lists for a batch in the concatenated layout (as NeighborList.compute_batch
+    takes it): one batch search at the largest cutoff, then per request [offsets, *the letters]
+    as compute_batch returns them, each structure's pairs exactly those of a separate call (a
+    derived full list: each structure's pairs, then their reversals)."""
+    _check_quantities(quantities)
+    cutoffs, search_full = _requested_cutoffs(requests)
+    count = batch_ptr.shape[0] - 1 if batch_ptr.dim() == 1 else -1
+    if boxes.dim() == 2 and count >= 0:
+        boxes = boxes.expand(count, 3, 3)
+    if periodic.dim() == 1 and count >= 0:
+        periodic = periodic.expand(count, 3)
+    i, j, S, offsets, shell = torch.ops.tricell.batch_pairs(
+        points, boxes, periodic, batch_ptr, cutoffs[-1], search_full, threads, cutoffs)
+    system = torch.repeat_interleave(torch.arange(count), offsets[1:] - offsets[:-1])
+    out: List[List[torch.Tensor]] = []
+    for request in requests:
+        keep = shell <= cutoffs.index(request[0])
+        ri, rj, rS, rsystem = i[keep], j[keep], S[keep], system[keep]
+        if request[1] and not search_full:
+            ri, rj, rS = _with_reversals(ri, rj, rS)
+            order = torch.sort(torch.cat([rsystem, rsystem]), stable=True)[1]
+            ri, rj, rS = ri[order], rj[order], rS[order]
+            rsystem = torch.cat([rsystem, rsystem])[order]
+        kept = torch.zeros(count + 1, dtype=torch.int64)
+        kept[1:] = torch.cumsum(torch.bincount(rsystem, minlength=count), 0)
+        D = torch.empty(0)
+        if "D" in quantities or "d" in quantities:
+            D = _batch_vectors(points, boxes, ri, rj, rS, kept)
+        out.append([kept] + _columns(quantities, ri, rj, rS, D))
+    return out

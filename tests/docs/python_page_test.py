@@ -119,6 +119,35 @@ def check_batch(ns):
     np.testing.assert_allclose(np.linalg.norm(ns["D"], axis=1), ns["d"], atol=1e-12)
 
 
+def requests_inputs():
+    torch_inputs()  # skips, with the reason, where PyTorch or the op library is missing
+    import torch
+    import tricell.torch
+
+    ns = batch_inputs()
+    points, box = skewed_points(30, 3)
+    return dict(tricell=tricell, torch=torch, points=points, box=box, **{
+        k: ns[k] for k in ("positions", "cells", "pbc", "ptr")})
+
+
+def check_requests(ns):
+    import tricell
+
+    points, box = ns["points"], ns["box"]
+    alone = tricell.NeighborList(3.0, full=False).compute(points, box, True, "ijSd")
+    key = lambda i, j, S: sorted(zip(np.asarray(i).tolist(), np.asarray(j).tolist(),  # noqa: E731
+                                     map(tuple, np.asarray(S).tolist())))
+    mine = tricell.neighbor_lists(points, box, True, ns["requests"], "ijSd")[1]
+    assert key(*mine[:3]) == key(*alone[:3])
+    torch_lists = ns["lists"]
+    assert [len(t[0]) for t in torch_lists] == [
+        len(tricell.NeighborList(r, full=f).compute(points, box, True, "i"))
+        for r, f in ns["requests"]]
+    offsets = ns["offsets"]
+    assert np.all(ns["d"][:offsets[1]] < 3.0) and np.all(ns["d"] < 6.0)
+    assert ns["batch"][0][0][-1] == len(ns["batch"][0][1])
+
+
 def verify_inputs():
     import ase.neighborlist  # noqa: F401 - the block calls ase.neighborlist.neighbor_list
 
@@ -283,6 +312,7 @@ HARNESS = {
     ("The native API", 1): (native_api_inputs, check_native_api),
     ("The native API", 2): (verify_inputs, check_verify),
     ("Batches for machine learning", 1): (batch_inputs, check_batch),
+    ("Several cutoffs per call", 1): (requests_inputs, check_requests),
     ("Drop-in for ASE", 1): (lambda: dict(atoms=silicon()), check_ase_function),
     ("Drop-in for ASE", 2): (ase_class_inputs, check_ase_class),
     ("Drop-in for pymatgen", 1): (pymatgen_inputs, check_pymatgen),

@@ -1,0 +1,84 @@
+// torch.ops.tricell.neighbor_shells: the pairs of several cutoffs from one search, as a
+// TorchScript custom op (tricell::compute_neighbors with a list of cutoffs,
+// include/tricell/analysis/shells.hpp).
+//
+// The op takes what neighbor_pairs takes, with strictly increasing cutoffs instead of one, and
+// returns the pairs (i, j, S) of the largest ordered by shell with the shell offsets
+// (len(cutoffs) + 1, int64): the pairs within cutoffs[k] are the prefix [0, offsets[k + 1]),
+// exactly those neighbor_pairs gives at cutoffs[k]. Like neighbor_pairs it records nothing for
+// autograd; tricell.torch computes D and d from the pairs.
+#include <cstdint>
+#include <tuple>
+#include <vector>
+
+#include <torch/library.h>
+#include <torch/types.h>
+
+#include <tricell/analysis/shells.hpp>
+#include <tricell/error.hpp>
+
+#include "op_arguments.hpp"
+
+namespace {
+
+using namespace tricell::torch_ops; // op_arguments.hpp
+
+constexpr const char* op = "neighbor_shells";
+
+std::tuple<at::Tensor, at::Tensor, at::Tensor, at::Tensor>
+neighbor_shells(const at::Tensor& positions, const at::Tensor& cell,
+                const c10::List<bool>& periodic, const c10::List<double>& cutoffs, bool full) {
+    check_positions_and_cell(op, positions, cell, "cell");
+    TORCH_CHECK(cell.dim() == 2 && cell.size(0) == 3 && cell.size(1) == 3, op,
+                ": cell must be a 3 x 3 tensor with the lattice vectors as rows (got shape ",
+                shape_of(cell), ")");
+    TORCH_CHECK(periodic.size() == 3, op, ": periodic must be three bools (got ", periodic.size(),
+                ")");
+    const at::Tensor x = positions.detach().to(at::kDouble).contiguous();
+    const at::Tensor h = cell.detach().to(at::kDouble).contiguous();
+    tricell::Periodicity pbc;
+    for (std::size_t axis = 0; axis < 3; ++axis) {
+        pbc.axes[axis] = periodic[axis];
+    }
+    tricell::NeighborOptions options;
+    options.half = !full;
+    options.quantities.shifts = true;
+    options.quantities.distances = false;
+    options.quantities.vectors = false;
+    const std::vector<double> radii(cutoffs.begin(), cutoffs.end());
+    tricell::ShellNeighborList shells;
+    try {
+        const auto n = static_cast<std::size_t>(x.size(0));
+        shells = tricell::compute_neighbors(
+            box_from_rows(h.data_ptr<double>(), pbc),
+            tricell::PointsView(n == 0 ? nullptr : x.data_ptr<double>(), n), radii, options);
+    } catch (const tricell::Error& error) {
+        TORCH_CHECK(false, op, ": ", error.what());
+    }
+    const tricell::NeighborList& list = shells.pairs;
+    const auto pairs = static_cast<std::int64_t>(list.size());
+    const auto as_long = at::TensorOptions().dtype(at::kLong);
+    at::Tensor i = at::empty({pairs}, as_long);
+    at::Tensor j = at::empty({pairs}, as_long);
+    at::Tensor shifts = at::empty({pairs, 3}, as_long);
+    at::Tensor offsets = at::empty({std::int64_t(shells.offsets.size())}, as_long);
+    for (std::size_t k = 0; k < list.size(); ++k) {
+        i.data_ptr<std::int64_t>()[k] = list.i()[k];
+        j.data_ptr<std::int64_t>()[k] = list.j()[k];
+    }
+    for (std::size_t k = 0; k < 3 * list.size(); ++k) {
+        shifts.data_ptr<std::int64_t>()[k] = list.shifts()[k];
+    }
+    for (std::size_t k = 0; k < shells.offsets.size(); ++k) {
+        offsets.data_ptr<std::int64_t>()[k] = std::int64_t(shells.offsets[k]);
+    }
+    return {i, j, shifts, offsets};
+}
+
+} // namespace
+
+TORCH_LIBRARY_FRAGMENT(tricell, m) {
+    m.def("neighbor_shells(Tensor positions, Tensor cell, bool[] periodic, float[] cutoffs, "
+          "bool full=True) -> (Tensor i, Tensor j, Tensor S, Tensor offsets)",
+          &neighbor_shells);
+}
