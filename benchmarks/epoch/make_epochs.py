@@ -2,18 +2,20 @@
 """Writes the epoch file (epoch_file.py): three epochs of structures as machine-learning
 potentials see them in training, built only from what Debian's python3-ase ships.
 
-- crystals: 1 536 periodic cells with a size profile like Matbench's (a size drawn per cell,
-  lognormal around 26 atoms, rounded up to whole repeats: a median of about 30 and about 77 000
-  atoms in all), each an ASE crystal (the elemental crystals of the dcdft collection, and
-  binary and ternary crystals of ase.build.bulk and ase.spacegroup.crystal) repeated along its narrowest axes to its drawn size, then strained
+- crystals: 1 536 periodic cells with the size profile of a stratified sample of Matbench's
+  mp_e_form (1 536 structures of 1 to 444 atoms, median 24, mean 49: 75 238 atoms; here sizes
+  drawn lognormal, each cell the repeat closest to its size), each an ASE crystal (the
+  elemental crystals of the dcdft collection, and binary and ternary crystals of
+  ase.build.bulk and ase.spacegroup.crystal) repeated along its narrowest axes, then strained
   by a random deformation (up to a few percent, shears included) and rattled by 0.02 A, so
   that every cell is triclinic and no two are alike;
 - molecules: 4 096 molecules of the g2 and s22 collections (7 atoms on average), each rotated
   at random and moved anywhere in a 100 A cube; open, with an all-zero cell, as data sets of
   molecules give them;
-- clusters: 4 096 clusters of g2 and s22 molecules of QMugs's size (about 50 atoms, from 10
-  to 200), packed at random in a sphere of organic density (0.08 atoms/A^3, no two atoms of
-  different molecules closer than 2 A); open, all-zero cell.
+- clusters: 4 096 clusters of g2 and s22 molecules with the size profile of a sample of QMugs
+  (drug-like molecules of 13 to 209 atoms, median 52, mean 55), packed at random in a sphere
+  of organic density (0.08 atoms/A^3, no two atoms of different molecules closer than 2 A);
+  open, all-zero cell.
 
 The cutoff is 5 A for every epoch (the common radius of MACE, NequIP and SchNet models).
 Everything is drawn from fixed seeds: the same ASE gives the same file.
@@ -67,20 +69,27 @@ def widths(cell):
     return 1.0 / np.linalg.norm(np.linalg.inv(cell), axis=0)
 
 
+LARGEST = 444  # atoms: the largest structure of the Matbench sample
+
+
 def repeated(prototype, target):
-    """The prototype repeated along its narrowest axes until it has at least `target` atoms
-    (never fewer than its own)."""
+    """The prototype repeated along its narrowest axes to the atom count closest to `target`,
+    at most LARGEST (never fewer than its own atoms)."""
     repeats = np.ones(3, dtype=int)
     w = widths(prototype.cell[:])
-    while len(prototype) * repeats.prod() < target:
-        repeats[np.argmin(w * repeats)] += 1
-    return prototype.repeat(tuple(repeats))
+    while True:
+        grown = repeats.copy()
+        grown[np.argmin(w * repeats)] += 1
+        atoms, more = len(prototype) * repeats.prod(), len(prototype) * grown.prod()
+        if more > LARGEST or abs(more - target) >= abs(atoms - target):
+            return prototype.repeat(tuple(repeats))
+        repeats = grown
 
 
 def crystals(rng, count):
     prototypes = crystal_prototypes()
     cells, positions = [], []
-    sizes = np.clip(np.rint(rng.lognormal(np.log(26.0), 1.0, count)), 1, 400)
+    sizes = np.clip(np.rint(rng.lognormal(np.log(26.0), 1.19, count)), 1, LARGEST)
     for target in sizes:
         atoms = repeated(prototypes[rng.integers(len(prototypes))], target)
         # A random deformation: normal strains of about 2 %, shears of about 3 %.
@@ -117,7 +126,7 @@ def clusters(rng, count):
     templates = molecule_templates()
     density, gap = 0.08, 2.0
     positions = []
-    sizes = np.clip(np.rint(rng.lognormal(np.log(48.0), 0.45, count)), 10, 200)
+    sizes = np.clip(np.rint(rng.lognormal(np.log(50.0), 0.42, count)), 13, 209)
     for target in sizes:
         radius = (3 * target / (4 * np.pi * density)) ** (1 / 3)
         placed = np.empty((0, 3))

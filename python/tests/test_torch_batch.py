@@ -149,6 +149,22 @@ def test_gradcheck_through_positions_and_every_box():
 
     assert len(i) > 0
     assert torch.autograd.gradcheck(vectors, (x, h))
+    assert torch.autograd.gradgradcheck(vectors, (x, h))
+
+
+def test_pair_vectors_refuses_pairs_that_do_not_fit():
+    x, h = torch.zeros(3, 3, dtype=torch.float64), torch.eye(3, dtype=torch.float64)[None]
+    i, j, S = torch.tensor([0]), torch.tensor([5]), torch.zeros(1, 3, dtype=torch.int64)
+    with pytest.raises(RuntimeError, match=r"pair_vectors: pair 0 indexes an atom out of range"):
+        torch.ops.tricell.pair_vectors(x, h, i, j, S, torch.tensor([0, 1]))
+    with pytest.raises(RuntimeError, match=r"pair_vectors: offsets must have one entry per cell "
+                                           r"and one more \(got shape \[3\] for 1 cells\)"):
+        torch.ops.tricell.pair_vectors(x, h, i, i, S, torch.tensor([0, 1, 1]))
+    with pytest.raises(RuntimeError, match=r"pair_vectors: offsets must start at 0 and end at the "
+                                           r"number of pairs \(got 0 and 0 for 1 pairs\)"):
+        torch.ops.tricell.pair_vectors(x, h, i, i, S, torch.tensor([0, 0]))
+    with pytest.raises(RuntimeError, match=r"pair_vectors: S must be an int64 tensor"):
+        torch.ops.tricell.pair_vectors(x, h, i, i, S.int(), torch.tensor([0, 1]))
 
 
 def brute_force_pairs(positions, cell, pbc, cutoff):

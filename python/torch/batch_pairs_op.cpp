@@ -107,7 +107,8 @@ batch_pairs(const at::Tensor& positions, const at::Tensor& cells, const at::Tens
     options.quantities.shifts = true;
     options.quantities.distances = !radii.empty();
     options.quantities.vectors = false;
-    tricell::BatchList list;
+    // One list per thread, kept between calls: its buffers are reused, as a NeighborList's are.
+    thread_local tricell::BatchList list;
     try {
         tricell::compute_neighbors_batch(structures, options, list);
     } catch (const tricell::Error& error) {

@@ -56,7 +56,8 @@ neighbor_pairs(const at::Tensor& positions, const at::Tensor& cell, const c10::L
     options.quantities.distances = false;
     options.quantities.vectors = false;
 
-    tricell::NeighborList list;
+    // One list per thread, kept between calls: its buffers are reused, as a NeighborList's are.
+    thread_local tricell::NeighborList list;
     try {
         const auto n = static_cast<std::size_t>(x.size(0));
         const tricell::PointsView points(n == 0 ? nullptr : x.data_ptr<double>(), n);

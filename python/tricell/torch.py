@@ -10,10 +10,11 @@
 The pairs (i, j, S) come from the ops torch.ops.tricell.neighbor_pairs (one structure) and
 torch.ops.tricell.batch_pairs (a batch in the concatenated layout) of the op library
 _tricell_torch.so next to this file, loaded on import; they run tricell's search on detached
-float64 copies and return int64 tensors. D = points[j] - points[i] + S @ box and d = |D| are
-computed here with ordinary torch ops, so gradients flow through points and every box, in eager
-mode and in TorchScript alike; D and d have the dtype of the inputs (float32 or float64). Boxes
-have the lattice vectors as rows.
+float64 copies and return int64 tensors. D = points[j] - points[i] + S @ box comes from the op
+torch.ops.tricell.pair_vectors with d = |D|, which has a backward (and double backward) pass,
+so gradients flow through points and every box, in eager mode and in TorchScript
+alike; D and d have the dtype of the inputs (float32 or float64). Boxes have the lattice
+vectors as rows.
 
 Importing raises ImportError when the op library was not built (tricell configured without
 libtorch, or the sanitizer build) or when PyTorch is missing.
@@ -69,10 +70,10 @@ class NeighborList(torch.nn.Module):
         3 x 3 box (rows are lattice vectors) of one dtype on the CPU."""
         _check_quantities(quantities)
         i, j, S = torch.ops.tricell.neighbor_pairs(points, box, periodic, self.cutoff, self.full)
-        D = torch.empty(0)
+        D, d = torch.empty(0), torch.empty(0)
         if "D" in quantities or "d" in quantities:
-            D = _vectors(points, box, i, j, S)
-        return _columns(quantities, i, j, S, D)
+            D, d = _vectors(points, box, i, j, S)
+        return _columns(quantities, i, j, S, D, d)
 
     @torch.jit.export
     def compute_batch(self, points: torch.Tensor, boxes: torch.Tensor, periodic: torch.Tensor,
@@ -91,10 +92,10 @@ class NeighborList(torch.nn.Module):
             periodic = periodic.expand(count, 3)
         i, j, S, offsets, _ = torch.ops.tricell.batch_pairs(
             points, boxes, periodic, batch_ptr, self.cutoff, self.full, self.threads)
-        D = torch.empty(0)
+        D, d = torch.empty(0), torch.empty(0)
         if "D" in quantities or "d" in quantities:
-            D = _batch_vectors(points, boxes, i, j, S, offsets)
-        return [offsets] + _columns(quantities, i, j, S, D)
+            D, d = _batch_vectors(points, boxes, i, j, S, offsets)
+        return [offsets] + _columns(quantities, i, j, S, D, d)
 
     def extra_repr(self) -> str:
         return f"cutoff={self.cutoff}, full={self.full}, threads={self.threads}"
@@ -109,24 +110,24 @@ def _check_quantities(quantities: str):
 
 
 def _vectors(points: torch.Tensor, box: torch.Tensor, i: torch.Tensor, j: torch.Tensor,
-             S: torch.Tensor) -> torch.Tensor:
-    """D = points[j] - points[i] + S @ box (differentiable in points and box)."""
-    return points.index_select(0, j) - points.index_select(0, i) + S.to(box.dtype) @ box
+             S: torch.Tensor) -> Tuple[torch.Tensor, torch.Tensor]:
+    """D = points[j] - points[i] + S @ box and d = |D|, differentiable in points and box (the op
+    pair_vectors with one structure)."""
+    offsets = torch.tensor([0, i.shape[0]], dtype=torch.int64)
+    return torch.ops.tricell.pair_vectors(points, box.unsqueeze(0), i, j, S, offsets)
 
 
 def _batch_vectors(points: torch.Tensor, boxes: torch.Tensor, i: torch.Tensor, j: torch.Tensor,
-                   S: torch.Tensor, offsets: torch.Tensor) -> torch.Tensor:
-    """D = points[j] - points[i] + S @ boxes[s] for the pairs of each structure s (contiguous,
-    structure s owning pairs offsets[s]:offsets[s + 1])."""
-    system = torch.repeat_interleave(torch.arange(offsets.shape[0] - 1), offsets[1:] - offsets[:-1])
-    shift = torch.bmm(S.to(boxes.dtype).unsqueeze(1), boxes.index_select(0, system))
-    return points.index_select(0, j) - points.index_select(0, i) + shift.squeeze(1)
+                   S: torch.Tensor, offsets: torch.Tensor) -> Tuple[torch.Tensor, torch.Tensor]:
+    """D = points[j] - points[i] + S @ boxes[s] and d = |D| for the pairs of each structure s
+    (contiguous, structure s owning pairs offsets[s]:offsets[s + 1]), differentiable in points
+    and every box (the op pair_vectors: one pass over the pairs, no copy of a box per pair)."""
+    return torch.ops.tricell.pair_vectors(points, boxes, i, j, S, offsets)
 
 
 def _columns(quantities: str, i: torch.Tensor, j: torch.Tensor, S: torch.Tensor,
-             D: torch.Tensor) -> List[torch.Tensor]:
-    """The tensors of the letters of quantities, in their order (D empty unless asked)."""
-    d = torch.linalg.norm(D, dim=1) if "d" in quantities else torch.empty(0)
+             D: torch.Tensor, d: torch.Tensor) -> List[torch.Tensor]:
+    """The tensors of the letters of quantities, in their order (D and d empty unless asked)."""
     out: List[torch.Tensor] = []
     for letter in quantities:
         if letter == "i":
@@ -240,10 +241,10 @@ def neighbor_lists(points: torch.Tensor, box: torch.Tensor, periodic: List[bool]
         ri, rj, rS = i[:n], j[:n], S[:n]
         if request[1] and not search_full:
             ri, rj, rS = _with_reversals(ri, rj, rS)
-        D = torch.empty(0)
+        D, d = torch.empty(0), torch.empty(0)
         if "D" in quantities or "d" in quantities:
-            D = _vectors(points, box, ri, rj, rS)
-        out.append(_columns(quantities, ri, rj, rS, D))
+            D, d = _vectors(points, box, ri, rj, rS)
+        out.append(_columns(quantities, ri, rj, rS, D, d))
     return out
 
 
@@ -276,8 +277,8 @@ def neighbor_lists_batch(points: torch.Tensor, boxes: torch.Tensor, periodic: to
             rsystem = torch.cat([rsystem, rsystem])[order]
         kept = torch.zeros(count + 1, dtype=torch.int64)
         kept[1:] = torch.cumsum(torch.bincount(rsystem, minlength=count), 0)
-        D = torch.empty(0)
+        D, d = torch.empty(0), torch.empty(0)
         if "D" in quantities or "d" in quantities:
-            D = _batch_vectors(points, boxes, ri, rj, rS, kept)
-        out.append([kept] + _columns(quantities, ri, rj, rS, D))
+            D, d = _batch_vectors(points, boxes, ri, rj, rS, kept)
+        out.append([kept] + _columns(quantities, ri, rj, rS, D, d))
     return out

@@ -78,9 +78,10 @@ class NeighborList:
         h = box.to(torch.device("cpu"), dtype)
         i, j, S = torch.ops.tricell.neighbor_pairs(x, h, flags, self.cutoff, self.full_list,
                                                    self.sorted)
-        D = torch.empty(0)
+        D, d = torch.empty(0), torch.empty(0)
         if "D" in quantities or "d" in quantities:
-            D = x.index_select(0, j) - x.index_select(0, i) + S.to(dtype) @ h
+            offsets = torch.tensor([0, i.shape[0]], dtype=torch.int64)
+            D, d = torch.ops.tricell.pair_vectors(x, h.unsqueeze(0), i, j, S, offsets)
         out: List[torch.Tensor] = []
         for letter in quantities:
             if letter == "i":
@@ -94,5 +95,5 @@ class NeighborList:
             elif letter == "D":
                 out.append(D.to(device))
             else:
-                out.append(torch.linalg.norm(D, dim=1).to(device))
+                out.append(d.to(device))
         return out
