@@ -23,6 +23,8 @@ __all__ = ["NeighborList", "ase_neighbor_list", "__version__"]
 
 __version__ = tricell.__version__
 
+_FLOAT64 = np.dtype(np.float64)
+
 _ALGORITHMS = {"auto": "auto", "cell_list": "dense", "brute_force": "direct"}
 
 
@@ -123,13 +125,15 @@ class NeighborList:
                 raise ValueError(f"unexpected character in `quantities`: {letter}")
         if self._error is not None:
             raise RuntimeError(self._error)
-        floating = points.dtype if np.issubdtype(points.dtype, np.floating) else np.float64
+        floating = points.dtype if points.dtype.kind == "f" else _FLOAT64
         try:
             if self.skin > 0:
                 columns = self._list.update(points, box, periodic, quantities or "i")
+                copy = False  # update() returns fresh arrays
             else:
+                # Views of the list's buffers: each column is then converted or copied once.
                 columns = self._list.compute(points, box, periodic, quantities or "i",
-                                             copy=copy)
+                                             copy=False)
         except ValueError as error:
             raise RuntimeError(str(error)) from None
         if len(quantities) == 1:
@@ -138,8 +142,10 @@ class NeighborList:
         for letter, column in zip(quantities, columns):
             if letter in "ijP":
                 column = column.astype(np.uint64)
-            elif letter in "dD" and floating != np.float64:
+            elif letter in "dD" and floating != _FLOAT64:
                 column = column.astype(floating)
+            elif copy:
+                column = column.copy()
             out.append(column)
         if torch is not None:
             out = [_to_torch(torch, column, device) for column in out]
