@@ -61,6 +61,28 @@ def test_batch_equals_one_call_per_structure(seed, dtype):
                     torch.testing.assert_close(got, theirs, rtol=1e-5, atol=1e-5)
 
 
+def test_outputs_of_many_megabytes_equal_the_native_lists():
+    # Over 4 MiB per column: the ops allocate such outputs themselves (output_tensor.hpp).
+    rng = np.random.default_rng(40)
+    points = rng.uniform(0, 24, (7000, 3))
+    box = 24 * np.eye(3)
+    cutoff = 3.5
+    expected = tricell.NeighborList(cutoff).compute(points, box, True, "ijSDd")
+    assert len(expected[0]) > 600_000
+    x, h = torch.from_numpy(points), torch.from_numpy(box)
+    nl = tt.NeighborList(cutoff)
+    single = nl(x, h, [True, True, True], "ijSDd")
+    offsets, *batch = nl.compute_batch(x, h[None], torch.ones(1, 3, dtype=torch.bool),
+                                       torch.tensor([0, len(points)]), "ijSDd")
+    assert offsets.tolist() == [0, len(expected[0])]
+    for columns in (single, batch):
+        for letter, mine, theirs in zip("ijSDd", columns, expected):
+            if letter in "ijS":
+                assert np.array_equal(mine.numpy(), theirs), letter
+            else:
+                np.testing.assert_allclose(mine.numpy(), theirs, rtol=0, atol=1e-12)
+
+
 def test_shared_box_and_periodicity_broadcast():
     x, h, pbc, ptr, cutoff, systems = random_batch(3)
     nl = tt.NeighborList(cutoff)

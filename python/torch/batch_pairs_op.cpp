@@ -28,6 +28,7 @@
 
 #include "batch_layout.hpp" // python/src: the pointer array's rule, shared with the numpy front
 #include "op_arguments.hpp"
+#include "output_tensor.hpp"
 
 namespace {
 
@@ -118,11 +119,10 @@ batch_pairs(const at::Tensor& positions, const at::Tensor& cells, const at::Tens
     }
 
     const auto pairs = static_cast<std::int64_t>(list.size());
-    const auto as_long = at::TensorOptions().dtype(at::kLong);
-    at::Tensor i = at::empty({pairs}, as_long);
-    at::Tensor j = at::empty({pairs}, as_long);
-    at::Tensor shifts = at::empty({pairs, 3}, as_long);
-    at::Tensor offsets = at::empty({count + 1}, as_long);
+    at::Tensor i = output_tensor({pairs}, at::kLong);
+    at::Tensor j = output_tensor({pairs}, at::kLong);
+    at::Tensor shifts = output_tensor({pairs, 3}, at::kLong);
+    at::Tensor offsets = output_tensor({count + 1}, at::kLong);
     std::int64_t* i_out = i.data_ptr<std::int64_t>();
     std::int64_t* j_out = j.data_ptr<std::int64_t>();
     std::int64_t* s_out = shifts.data_ptr<std::int64_t>();
@@ -141,7 +141,7 @@ batch_pairs(const at::Tensor& positions, const at::Tensor& cells, const at::Tens
     for (std::size_t k = 0; k < 3 * list.size(); ++k) {
         s_out[k] = s_in[k];
     }
-    at::Tensor shell = at::empty({radii.empty() ? 0 : pairs}, as_long);
+    at::Tensor shell = output_tensor({radii.empty() ? 0 : pairs}, at::kLong);
     if (!radii.empty()) {
         std::int64_t* shell_out = shell.data_ptr<std::int64_t>();
         for (std::size_t k = 0; k < list.size(); ++k) {

@@ -20,6 +20,7 @@
 #include <tricell/neighbor_list.hpp>
 
 #include "op_arguments.hpp"
+#include "output_tensor.hpp"
 
 namespace {
 
@@ -67,10 +68,9 @@ neighbor_pairs(const at::Tensor& positions, const at::Tensor& cell, const c10::L
     }
 
     const auto pairs = static_cast<std::int64_t>(list.size());
-    const auto as_long = at::TensorOptions().dtype(at::kLong);
-    at::Tensor i = at::empty({pairs}, as_long);
-    at::Tensor j = at::empty({pairs}, as_long);
-    at::Tensor shifts = at::empty({pairs, 3}, as_long);
+    at::Tensor i = output_tensor({pairs}, at::kLong);
+    at::Tensor j = output_tensor({pairs}, at::kLong);
+    at::Tensor shifts = output_tensor({pairs, 3}, at::kLong);
     std::int64_t* i_out = i.data_ptr<std::int64_t>();
     std::int64_t* j_out = j.data_ptr<std::int64_t>();
     std::int64_t* s_out = shifts.data_ptr<std::int64_t>();

@@ -18,6 +18,7 @@
 #include <tricell/error.hpp>
 
 #include "op_arguments.hpp"
+#include "output_tensor.hpp"
 
 namespace {
 
@@ -57,11 +58,10 @@ neighbor_shells(const at::Tensor& positions, const at::Tensor& cell,
     }
     const tricell::NeighborList& list = shells.pairs;
     const auto pairs = static_cast<std::int64_t>(list.size());
-    const auto as_long = at::TensorOptions().dtype(at::kLong);
-    at::Tensor i = at::empty({pairs}, as_long);
-    at::Tensor j = at::empty({pairs}, as_long);
-    at::Tensor shifts = at::empty({pairs, 3}, as_long);
-    at::Tensor offsets = at::empty({std::int64_t(shells.offsets.size())}, as_long);
+    at::Tensor i = output_tensor({pairs}, at::kLong);
+    at::Tensor j = output_tensor({pairs}, at::kLong);
+    at::Tensor shifts = output_tensor({pairs, 3}, at::kLong);
+    at::Tensor offsets = output_tensor({std::int64_t(shells.offsets.size())}, at::kLong);
     for (std::size_t k = 0; k < list.size(); ++k) {
         i.data_ptr<std::int64_t>()[k] = list.i()[k];
         j.data_ptr<std::int64_t>()[k] = list.j()[k];

@@ -21,6 +21,7 @@
 #include <torch/types.h>
 
 #include "op_arguments.hpp"
+#include "output_tensor.hpp"
 
 namespace {
 
@@ -98,8 +99,8 @@ pair_vectors_forward(const at::Tensor& positions, const at::Tensor& cells, const
     const at::Tensor h = cells.contiguous();
     const at::Tensor ic = i.contiguous(), jc = j.contiguous(), Sc = S.contiguous();
     const at::Tensor oc = offsets.contiguous();
-    at::Tensor out = at::empty({i.size(0), 3}, positions.options());
-    at::Tensor lengths = at::empty({i.size(0)}, positions.options());
+    at::Tensor out = output_tensor({i.size(0), 3}, positions.scalar_type());
+    at::Tensor lengths = output_tensor({i.size(0)}, positions.scalar_type());
     if (positions.scalar_type() == at::kDouble) {
         vectors_kernel<double>(x, h, ic, jc, Sc, oc, out, lengths);
     } else {
