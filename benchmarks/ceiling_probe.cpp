@@ -9,11 +9,9 @@
 //   (a reused list), one sequential pass per column, P = the workload's pair count;
 // - test: the library's own run-time selected distance kernel (AVX2 with lane compaction where
 //   the processor has it) over C candidates in full 64-candidate blocks held in L1, C = the
-//   candidates the workload's stencil generates (cells x stencil offsets x atoms, from the
-//   dense backend's grid and exactly pruned stencil for the same search radius, rebuilt from
-//   the public CellGrid / Stencil / SortedCellList in the caller's frame, so a strongly skewed
-//   cell that the search reduces is counted unreduced). The block points are placed so that
-//   the hit fraction matches P / C.
+//   distance tests the search itself makes for the workload (NeighborSearch::unit_work, what
+//   its stencil and clusters leave to test). The block points are placed so that the hit
+//   fraction matches P / C.
 //
 // ceiling_s = store_s + test_s is the time of a search with no overhead at all: no binning, no
 // loop control between ranges, no image bookkeeping, no call overhead. A workload's time as a
@@ -34,84 +32,12 @@
 #include <vector>
 
 #include "scan/distance_kernel.hpp"
-#include <tricell/cell_list.hpp>
-#include <tricell/grid.hpp>
 #include <tricell/io/structure.hpp>
 #include <tricell/neighbor_list.hpp>
-#include <tricell/stencil.hpp>
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-// Candidate pairs the stencil generates: the grid and stencil the dense backend builds for the
-// same search (cells from the same search radius and cells per cutoff, at most 4 N + 64; the
-// stencil pruned exactly), rebuilt here from the public CellGrid / Stencil / SortedCellList,
-// in the caller's frame. For every cell and every stencil offset, (atoms in the cell) x (atoms
-// in the cell it reaches); the zero offset pairs a cell's atoms with each other only
-// (n (n - 1) ordered pairs, half of them for a half list).
-double count_candidates(const tricell::Box& box, const std::vector<Eigen::Vector3d>& positions,
-                        double search_radius, const tricell::NeighborOptions& options) {
-    const std::size_t atoms = positions.size();
-    std::vector<Eigen::Vector3d> fractional(atoms);
-    Eigen::Vector3d lower = Eigen::Vector3d::Zero(), upper = Eigen::Vector3d::Zero();
-    for (std::size_t i = 0; i < atoms; ++i) {
-        fractional[i] = box.wrap(box.to_fractional(tricell::Cartesian(positions[i]))).wrapped;
-        lower = i == 0 ? fractional[i] : Eigen::Vector3d(lower.cwiseMin(fractional[i]));
-        upper = i == 0 ? fractional[i] : Eigen::Vector3d(upper.cwiseMax(fractional[i]));
-    }
-    tricell::GridOptions grid_options;
-    grid_options.search_radius = search_radius;
-    grid_options.cells_per_cutoff = options.cells_per_cutoff;
-    grid_options.max_cells = 4 * atoms + 64;
-    const tricell::CellGrid grid(box, grid_options, lower, upper);
-    std::vector<std::uint32_t> cell_of(atoms);
-    for (std::size_t i = 0; i < atoms; ++i) {
-        cell_of[i] = std::uint32_t(grid.cell_of(fractional[i]));
-    }
-    tricell::SortedCellList cells;
-    cells.build(cell_of, grid.cell_count());
-    const tricell::Stencil stencil = options.half
-                                         ? tricell::Stencil::half(grid, box, search_radius, true)
-                                         : tricell::Stencil::full(grid, box, search_radius, true);
-    const bool half = options.half;
-    const std::array<int, 3>& n = grid.dims();
-    double total = 0;
-    for (int ca = 0; ca < n[0]; ++ca) {
-        for (int cb = 0; cb < n[1]; ++cb) {
-            for (int cc = 0; cc < n[2]; ++cc) {
-                const std::size_t c1 = grid.flat(ca, cb, cc);
-                const double n1 = cells.cell_end(c1) - cells.cell_start(c1);
-                if (n1 == 0) {
-                    continue;
-                }
-                for (const tricell::CellOffset& d : stencil.offsets()) {
-                    const int t[3] = {ca + d[0], cb + d[1], cc + d[2]};
-                    int c2[3];
-                    bool inside = true;
-                    for (int k = 0; k < 3; ++k) {
-                        if (grid.periodicity()[k]) {
-                            c2[k] = tricell::floor_mod(t[k], n[std::size_t(k)]);
-                        } else {
-                            inside = inside && t[k] >= 0 && t[k] < n[std::size_t(k)];
-                            c2[k] = t[k];
-                        }
-                    }
-                    if (!inside) {
-                        continue;
-                    }
-                    if (d[0] == 0 && d[1] == 0 && d[2] == 0) {
-                        total += half ? n1 * (n1 - 1) / 2 : n1 * (n1 - 1);
-                    } else {
-                        const std::size_t f = grid.flat(c2[0], c2[1], c2[2]);
-                        total += n1 * double(cells.cell_end(f) - cells.cell_start(f));
-                    }
-                }
-            }
-        }
-    }
-    return total;
-}
 
 // Runs body() `inner` times per sample, K samples after a warm-up, and returns the median time
 // of one body() call. `inner` grows until one sample lasts at least 2 ms.
@@ -212,8 +138,9 @@ int main(int argc, char** argv) {
         const tricell::io::Structure structure = tricell::io::read_structure(file);
         search.build(structure.box, structure.positions, options);
         search.compute(list);
-        candidates = count_candidates(structure.box, structure.positions,
-                                      search.info().search_radius, options);
+        for (const double unit : search.unit_work().measured) {
+            candidates += unit;
+        }
     } catch (const std::exception& e) {
         std::fprintf(stderr, "ceiling_probe: %s\n", e.what());
         return 1;

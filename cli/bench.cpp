@@ -3,9 +3,9 @@
 // The structure is read once; the list is computed once as a warm-up and then K times into the
 // same reused NeighborList. Prints one "key value" line per measurement, for people and for
 // benchmarks/compare: pairs, median and minimum seconds, pairs per second, the size of the
-// stored arrays and the peak resident memory of the process. --list-backends prints the names
-// --backend takes, from the library's table of backends, so that compare needs no list of its
-// own.
+// stored arrays, the peak resident memory of the process and the distance tests per stored pair.
+// --list-backends prints the names --backend takes, from the library's table of backends, so
+// that compare needs no list of its own.
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -69,7 +69,9 @@ Times tricell's neighbour list of FILE: one warm-up call, then K timed calls (de
 a reused list. Prints the order (search, grouped or sorted), pairs, median_s, min_s,
 pairs_per_s, list_bytes and list_mb (the stored arrays, offsets included), base_rss_mb
 (resident memory after reading FILE, before any search), peak_rss_mb (peak resident memory of
-the whole process), the backend that ran and the cells it stored, one "key value" per line.
+the whole process), the backend that ran, the cells it stored and tests_per_pair (the distance
+tests the search makes per stored pair: what its stencil and clusters leave to test), one "key
+value" per line.
 
 Options:
   --cutoff R          cutoff, R > 0 (required)
@@ -186,6 +188,12 @@ int run_bench(Arguments& arguments) {
     const SearchInfo info = search.info();
     std::printf("backend %s\n", backend_name(info.backend));
     std::printf("stored_cells %zu\n", info.stored_cells);
+    const UnitWork work = search.unit_work();
+    double tests = 0;
+    for (const double unit : work.measured) {
+        tests += unit;
+    }
+    std::printf("tests_per_pair %.4g\n", list.size() > 0 ? tests / double(list.size()) : 0.0);
     return 0;
 }
 

@@ -106,8 +106,9 @@ struct TRICELL_API NeighborOptions {
     bool grouped = false;
     Quantities quantities;
     SearchBackend backend = SearchBackend::automatic;
-    /// Target cells per cutoff along each axis (>= 1), grid backends. Never changes the result.
-    double cells_per_cutoff = 1;
+    /// Target cells per cutoff along each axis (>= 1), grid backends; 0 lets the search choose
+    /// (one cell per cutoff, or two where an atom has many neighbours). Never changes the result.
+    double cells_per_cutoff = 0;
     /// Refuse (InvalidArgument) when the estimated or actual number of stored pairs exceeds this;
     /// 0 means no limit. The default, 5e8 pairs, is about 14 GB of i, j, S, d
     /// (26 GB with D).

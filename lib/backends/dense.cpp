@@ -4,6 +4,8 @@
 // consecutive in the sorted order, so a row is one contiguous range of atoms, split only where
 // it wraps around the c axis (each piece with its own image shift). The work units are cells.
 #include <algorithm>
+#include <cstddef>
+#include <cstdlib>
 
 #include "backends/backend.hpp"
 #include "backends/grid_neighbourhood.hpp"
@@ -29,6 +31,20 @@ class DenseBackend final : public Backend {
             });
         sorted_.build(cell_of, cells_.grid().cell_count(), input.plan.threads);
         order = sorted_.order();
+        // The rows as flat cell offsets, for the cells whose every row lies inside the grid.
+        const std::array<int, 3>& dims = cells_.grid().dims();
+        inner_rows_.clear();
+        reach_ = {0, 0, 0};
+        for (const StencilRow& row : cells_.rows()) {
+            const std::ptrdiff_t base =
+                (std::ptrdiff_t(row.da) * dims[1] + row.db) * std::ptrdiff_t(dims[2]);
+            inner_rows_.push_back(
+                InnerRow{base + row.dc_lo, base + row.dc_hi,
+                         row.da == 0 && row.db == 0 && row.dc_lo <= 0 && 0 <= row.dc_hi});
+            reach_[0] = std::max(reach_[0], std::abs(row.da));
+            reach_[1] = std::max(reach_[1], std::abs(row.db));
+            reach_[2] = std::max({reach_[2], std::abs(row.dc_lo), std::abs(row.dc_hi)});
+        }
     }
 
     std::size_t unit_count() const override { return cells_.grid().cell_count(); }
@@ -46,12 +62,30 @@ class DenseBackend final : public Backend {
     void visit(std::size_t begin, std::size_t end, CandidateScanner& scan) const override {
         const std::array<int, 3>& n = cells_.grid().dims();
         const bool periodic_c = cells_.grid().periodicity()[2];
+        std::vector<CandidateRange> pieces; // of one home cell's rows
+        std::vector<CandidateRange> inner;  // of a cell inside the grid (shifts all zero)
         for (std::size_t c1 = begin; c1 < end; ++c1) {
             const std::uint32_t begin1 = sorted_.cell_start(c1), end1 = sorted_.cell_end(c1);
             if (begin1 == end1) {
                 continue;
             }
             const std::array<int, 3> c = cells_.coordinates(c1);
+            pieces.clear();
+            if (inside(c, n)) {
+                // Every row is one range through a zero shift.
+                inner.resize(inner_rows_.size(),
+                             CandidateRange{0, 0, {0, 0, 0}, {0, 0, 0}, false, false});
+                std::uint32_t count = 0;
+                for (const InnerRow& row : inner_rows_) {
+                    CandidateRange& r = inner[count];
+                    r.b0 = sorted_.cell_start(std::size_t(std::ptrdiff_t(c1) + row.lo));
+                    r.b1 = sorted_.cell_end(std::size_t(std::ptrdiff_t(c1) + row.hi));
+                    r.own = row.own;
+                    count += r.b0 != r.b1 ? 1 : 0;
+                }
+                scan.cell(begin1, end1, inner.data(), count);
+                continue;
+            }
             for (const StencilRow& row : cells_.rows()) {
                 const int na = cells_.neighbour_cell(0, c[0] + row.da);
                 const int nb = cells_.neighbour_cell(1, c[1] + row.db);
@@ -85,10 +119,17 @@ class DenseBackend final : public Backend {
                     const std::uint32_t end2 = sorted_.cell_end(column + std::size_t(last));
                     if (begin2 != end2) {
                         const bool own = own_row && sc == 0 && first <= c[2] && c[2] <= last;
-                        scan.ranges(begin1, end1, begin2, end2, scan.shift(sa, sb, sc), own);
+                        const ImageShift s = scan.shift(sa, sb, sc);
+                        pieces.push_back(CandidateRange{begin2,
+                                                        end2,
+                                                        {s.s[0], s.s[1], s.s[2]},
+                                                        {s.v[0], s.v[1], s.v[2]},
+                                                        own,
+                                                        false});
                     }
                 }
             }
+            scan.cell(begin1, end1, pieces.data(), std::uint32_t(pieces.size()));
         }
     }
 
@@ -99,8 +140,26 @@ class DenseBackend final : public Backend {
     }
 
   private:
+    // A stencil row as flat offsets from the home cell: cells [lo, hi] of the sorted order.
+    struct InnerRow {
+        std::ptrdiff_t lo, hi;
+        bool own;
+    };
+
+    // Whether every row of cell c lies inside the grid (no wrap, no image shift, no open end).
+    bool inside(const std::array<int, 3>& c, const std::array<int, 3>& n) const {
+        for (std::size_t k = 0; k < 3; ++k) {
+            if (c[k] < reach_[k] || c[k] + reach_[k] >= n[k]) {
+                return false;
+            }
+        }
+        return true;
+    }
+
     GridNeighbourhood cells_;
     SortedCellList sorted_;
+    std::vector<InnerRow> inner_rows_;
+    std::array<int, 3> reach_{};
 };
 
 } // namespace

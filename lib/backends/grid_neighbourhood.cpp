@@ -5,7 +5,7 @@ namespace tricell::detail {
 void GridNeighbourhood::build(const BinningInput& input, std::size_t max_cells, bool tables) {
     GridOptions grid_options;
     grid_options.search_radius = input.search_radius;
-    grid_options.cells_per_cutoff = input.options.cells_per_cutoff;
+    grid_options.cells_per_cutoff = input.plan.cells_per_cutoff;
     grid_options.max_cells = max_cells;
     grid_ = CellGrid(input.frame, grid_options, input.lower, input.upper);
 

@@ -171,6 +171,16 @@ inline bool choose_direct(std::size_t atoms, double min_width, double radius) {
 /// that it refuses the search, naming the radius, rather than allocate gigabytes.
 constexpr double max_direct_images = double(1 << 22);
 
+/// Cells per cutoff of a grid search (when NeighborOptions::cells_per_cutoff leaves it to the
+/// search) for atoms with `neighbours` neighbours each, of a `half` list: cells of a whole
+/// cutoff, whose stencil holds about 27 r^3 of candidates (6.5 per pair), or of half a cutoff,
+/// which brings that to about 3.8 per pair but pays a range of a few atoms per stencil row and
+/// atom. Halving wins once rows hold enough atoms: measured from about 75 neighbours in a half
+/// list and 100 in a full one (docs/performance.md).
+inline double grid_cells_per_cutoff(double neighbours, bool half) {
+    return neighbours >= (half ? 75.0 : 100.0) ? 2.0 : 1.0;
+}
+
 /// Dense or hash for a grid search: dense when the full-resolution cell count fits the cap.
 inline SearchBackend choose_grid_backend(double full_resolution_cells, double max_cells) {
     return full_resolution_cells <= max_cells ? SearchBackend::dense : SearchBackend::hash;

@@ -36,7 +36,8 @@ std::size_t cell_cap(const NeighborOptions& options, std::size_t atoms) {
 // The concrete backend for `automatic` (see the comment atop policy.hpp).
 SearchBackend automatic_backend(const Box& box, const std::vector<Eigen::Vector3d>& fractional,
                                 const Eigen::Vector3d& lower, const Eigen::Vector3d& upper,
-                                double search_radius, const NeighborOptions& options) {
+                                double search_radius, double cells_per_cutoff,
+                                const NeighborOptions& options) {
     const std::size_t n = fractional.size();
     double min_width = std::numeric_limits<double>::infinity();
     for (int k = 0; k < 3; ++k) {
@@ -47,7 +48,7 @@ SearchBackend automatic_backend(const Box& box, const std::vector<Eigen::Vector3
     if (choose_direct(n, min_width, search_radius)) {
         return SearchBackend::direct;
     }
-    const double h = search_radius / options.cells_per_cutoff;
+    const double h = search_radius / cells_per_cutoff;
     double cells = 1;
     for (int k = 0; k < 3; ++k) {
         const double span = box.periodic(k) ? 1.0 : std::max(upper[k] - lower[k], 0.0);
@@ -198,9 +199,15 @@ BuildPlan plan_build(const NeighborOptions& options, const Box& frame,
     plan.estimated_pairs = estimated_system_pairs(frame, n, wrapped.lower, wrapped.upper, cutoff,
                                                   options.half && !subset) *
                            (double(query_atoms) / double(n));
+    // Neighbours per atom: of the full list's pairs (a subset's share over its query atoms).
+    const double neighbours =
+        plan.estimated_pairs / double(query_atoms) * (options.half && !subset ? 2.0 : 1.0);
+    plan.cells_per_cutoff = options.cells_per_cutoff != 0
+                                ? options.cells_per_cutoff
+                                : grid_cells_per_cutoff(neighbours, options.half);
     plan.backend = options.backend == SearchBackend::automatic
                        ? automatic_backend(frame, wrapped.fractional, wrapped.lower, wrapped.upper,
-                                           search_radius, options)
+                                           search_radius, plan.cells_per_cutoff, options)
                        : options.backend;
     return plan;
 }

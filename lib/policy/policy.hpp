@@ -9,8 +9,8 @@
 //   few atoms in a cell narrower than the cutoff, else the grid the cell count allows: dense
 //   under the cell cap, the compact hash above it, unless the two-density model prices the
 //   octree clearly cheaper from the local densities of a sample of atoms), the cell cap
-//   (4 N + 64 cells, so that a grid's memory follows the atoms, not the volume) and the
-//   stencil's pruning.
+//   (4 N + 64 cells, so that a grid's memory follows the atoms, not the volume), the grid's
+//   cells per cutoff (cost_model.hpp) and the stencil's pruning.
 // - Compute plan: the threads of the scan, the pairs expected of each work unit from its
 //   occupancy, the room reserved for the list, and for several threads the batches: units cut
 //   into batches of about equal occupancy work and a few thousand pairs each, so that a batch's
@@ -55,6 +55,7 @@ struct BuildPlan {
     double estimated_pairs = 0;                   ///< of the list, from the density
     SearchBackend backend = SearchBackend::dense; ///< never `automatic`
     std::size_t cell_cap = 0;                     ///< most cells of the dense and linked grids
+    double cells_per_cutoff = 1;                  ///< of the grids (the option, or chosen)
     std::size_t atoms = 0;
 
     /// Whether the stencil prunes offsets by the exact closest approach of their cells (a small

@@ -30,6 +30,7 @@
 #include "scan/distance_kernel.hpp"
 #include "scan/half_orientation.hpp"
 #include "scan/pair_sink.hpp"
+#include "scan/range_kernel.hpp"
 
 namespace tricell::detail {
 
@@ -49,7 +50,10 @@ class CandidateScanner {
           zero_images_(atoms.zero_images), index_(atoms.index.data()), h_(frame.box().matrix()),
           cutoff_sq_(rule.threshold_sq()), rule_(rule), half_(half), frame_(frame), sink_(sink),
           query_(atoms.subset() ? atoms.query.data() : nullptr),
-          subset_half_(atoms.subset() && half) {}
+          subset_half_(atoms.subset() && half), range_input_{x_,         y_,     z_,
+                                                             index_,     image_, zero_images_,
+                                                             cutoff_sq_, half},
+          range_kernel_(range_kernel()) {}
 
     /// Whether atom a can be the first atom of a pair (false only outside the query of a full
     /// subset list); backends that name single pairs skip the others early.
@@ -58,6 +62,9 @@ class CandidateScanner {
     }
 
     ImageShift shift(int sa, int sb, int sc) const {
+        if ((sa | sb | sc) == 0) {
+            return ImageShift{{0, 0, 0}, {0, 0, 0}}; // the same bits in every D (see above)
+        }
         const Eigen::Vector3d v = h_.col(0) * sa + h_.col(1) * sb + h_.col(2) * sc;
         return ImageShift{{sa, sb, sc}, {v.x(), v.y(), v.z()}};
     }
@@ -87,6 +94,43 @@ class CandidateScanner {
                 group[g] = a + g;
             }
             scan(group, last - a, own && half_ ? a + 1 : b0, b1, s, own ? Scan::own : Scan::plain);
+        }
+    }
+
+    /// Every atom of [a0, a1) against every range of list[0, count), the pieces of a home cell's
+    /// stencil rows: through the range kernel (range_kernel.hpp), up to kernel_group atoms at a
+    /// time against as many ranges as one claim of the sink holds; a variable cutoff, a subset
+    /// search and a range too long for a claim go range by range through ranges().
+    void cell(std::uint32_t a0, std::uint32_t a1, CandidateRange* list, std::uint32_t count) {
+        if (query_ != nullptr || !rule_.uniform()) {
+            for (std::uint32_t q = 0; q < count; ++q) {
+                ranges(a0, a1, list[q].b0, list[q].b1, image_shift(list[q]), list[q].own);
+            }
+            return;
+        }
+        for (std::uint32_t q = 0; q < count; ++q) {
+            list[q].self_turn = half_ && flip(0, 0, list[q].s[0], list[q].s[1], list[q].s[2]);
+        }
+        for (std::uint32_t g0 = a0; g0 < a1; g0 += kernel_group) {
+            const std::uint32_t g1 = std::min(g0 + kernel_group, a1);
+            const std::size_t most = (sink_.claim_limit() - kernel_slack) / (g1 - g0);
+            std::uint32_t first = 0;
+            std::size_t candidates = 0;
+            for (std::uint32_t q = 0; q < count; ++q) {
+                const std::size_t length = list[q].b1 - list[q].b0;
+                if (candidates + length > most) {
+                    kernel_ranges(g0, g1, list + first, q - first, candidates);
+                    first = q;
+                    candidates = 0;
+                }
+                if (length > most) {
+                    ranges(g0, g1, list[q].b0, list[q].b1, image_shift(list[q]), list[q].own);
+                    first = q + 1;
+                    continue;
+                }
+                candidates += length;
+            }
+            kernel_ranges(g0, g1, list + first, count - first, candidates);
         }
     }
 
@@ -176,6 +220,22 @@ class CandidateScanner {
                                std::uint32_t found) const;
     std::uint32_t drop_mirrored(const Side& side, std::uint32_t start, std::uint32_t* hits,
                                 double* d_sq, std::uint32_t found) const;
+
+    // Atoms [a0, a1) against ranges list[0, count) of `candidates` atoms in all, through the range
+    // kernel in one claim.
+    void kernel_ranges(std::uint32_t a0, std::uint32_t a1, const CandidateRange* list,
+                       std::uint32_t count, std::size_t candidates) {
+        if (count == 0) {
+            return;
+        }
+        tests_ += std::uint64_t(a1 - a0) * candidates;
+        const PairSink::Slots out = sink_.claim((a1 - a0) * candidates + kernel_slack);
+        sink_.commit(range_kernel_(range_input_, a0, a1, list, count, out));
+    }
+
+    static ImageShift image_shift(const CandidateRange& r) {
+        return ImageShift{{r.s[0], r.s[1], r.s[2]}, {r.v[0], r.v[1], r.v[2]}};
+    }
 
     // -s (T of -s is exactly -T, see above).
     static ImageShift reversed(const ImageShift& s) {
@@ -445,6 +505,8 @@ class CandidateScanner {
     PairSink& sink_;
     const std::uint8_t* query_; // null unless a subset search (see above)
     bool subset_half_;
+    RangeScanInput range_input_;
+    RangeKernel range_kernel_;
     std::uint64_t tests_ = 0;
 };
 

@@ -15,6 +15,7 @@
 #include "frame/search_frame.hpp"
 #include "policy/list_limits.hpp"
 #include "scan/distance_kernel.hpp"
+#include "scan/range_kernel.hpp"
 #include "tricell/error.hpp"
 #include "tricell/neighbor_list.hpp"
 
@@ -46,7 +47,7 @@ class PairSink {
     PairSink(const SinkColumns& columns, const ListLimits& limits, std::size_t initial,
              std::size_t start = 0)
         : columns_(columns), size_(start), limit_(limits.pairs()), limits_(&limits) {
-        resize(limit_ != 0 ? std::min(start + initial, std::max(start, limit_) + block_size)
+        resize(limit_ != 0 ? std::min(start + initial, std::max(start, limit_) + max_claim)
                            : start + initial);
     }
 
@@ -64,14 +65,13 @@ class PairSink {
 
     /// The next places in each column (null: a column not stored); `squares`: distances holds
     /// d^2 (block mode), not d.
-    struct Slots {
-        std::uint32_t* i;
-        std::uint32_t* j;
-        std::int32_t* shifts; ///< 3 per pair
-        double* distances;
-        double* vectors; ///< 3 per pair
-        bool squares;
-    };
+    using Slots = PairSlots;
+
+    /// The most pairs one claim() asks for in storing mode.
+    static constexpr std::size_t max_claim = 8 * block_size;
+
+    /// The most pairs one claim() may ask for: a block in block mode, max_claim in storing mode.
+    std::size_t claim_limit() const { return on_block_ != nullptr ? block_size : max_claim; }
 
     /// Places for `count` more pairs, which the caller fills (put()) and then commit()s, at most
     /// `count` of them. Makes room first: storing mode grows the columns, block mode hands out
@@ -159,7 +159,7 @@ class PairSink {
         limits_->check_growth(capacity_);
         std::size_t next = std::max({std::size_t(1024), capacity_ * 2, size_ + count});
         if (limit_ != 0) {
-            next = std::max(std::min(next, limit_ + block_size), size_ + count);
+            next = std::max(std::min(next, limit_ + max_claim), size_ + count);
         }
         resize(next);
     }

@@ -55,8 +55,10 @@ void NeighborOptions::validate() const {
                                           " and ", e.cutoff, ")");
         }
     }
-    if (!(std::isfinite(cells_per_cutoff) && cells_per_cutoff >= 1)) {
-        detail::fail<InvalidArgument>("cells_per_cutoff must be >= 1 (got ", cells_per_cutoff, ")");
+    if (!(std::isfinite(cells_per_cutoff) && (cells_per_cutoff == 0 || cells_per_cutoff >= 1))) {
+        detail::fail<InvalidArgument>(
+            "cells_per_cutoff must be 0 (chosen by the search) or >= 1 (got ", cells_per_cutoff,
+            ")");
     }
     if (threads < 0 || threads > 1024) {
         detail::fail<InvalidArgument>("threads must be in [0, 1024] (got ", threads, ")");

@@ -123,7 +123,7 @@ void NeighborSearch::compute(NeighborList& out) const {
     input.query_atoms = s.query_atoms;
     s.backend->occupancy(input.occupancy);
     input.neighbours = [&] { return s.backend->neighbours(); };
-    input.claim = detail::PairSink::block_size;
+    input.claim = detail::PairSink::max_claim;
     const detail::ComputePlan plan = detail::plan_compute(s.options, input, limits);
     const detail::TeamScope team(plan.threads);
     try {

@@ -167,8 +167,11 @@ TEST(NeighborList, RejectsBadCutoff) {
     NeighborOptions o = with_cutoff(1);
     o.cells_per_cutoff = 0.5;
     EXPECT_THROW_MSG(tricell::compute_neighbors(cube10, x, o), tricell::InvalidArgument,
-                     "cells_per_cutoff must be >= 1 (got 0.5)");
-    o.cells_per_cutoff = 1;
+                     "cells_per_cutoff must be 0 (chosen by the search) or >= 1 (got 0.5)");
+    o.cells_per_cutoff = -1;
+    EXPECT_THROW_MSG(tricell::compute_neighbors(cube10, x, o), tricell::InvalidArgument,
+                     "cells_per_cutoff must be 0 (chosen by the search) or >= 1 (got -1)");
+    o.cells_per_cutoff = 0;
     o.threads = -2;
     EXPECT_THROW_MSG(tricell::compute_neighbors(cube10, x, o), tricell::InvalidArgument,
                      "threads must be in [0, 1024] (got -2)");

@@ -510,7 +510,8 @@ TEST(VerletList, ErrorsNameTheValue) {
                      "skin must be finite (got inf)");
     VerletOptions o = with(2, 0.1);
     o.neighbors.cells_per_cutoff = 0.5;
-    EXPECT_THROW_MSG(o.validate(), InvalidArgument, "cells_per_cutoff must be >= 1 (got 0.5)");
+    EXPECT_THROW_MSG(o.validate(), InvalidArgument,
+                     "cells_per_cutoff must be 0 (chosen by the search) or >= 1 (got 0.5)");
     o = with(2, 0.1);
     o.neighbors.threads = -2;
     EXPECT_THROW_MSG(o.validate(), InvalidArgument, "threads must be in [0, 1024] (got -2)");

@@ -1,0 +1,315 @@
+#include "scan/range_kernel.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define TRICELL_HAVE_AVX_RANGE_KERNELS 1
+#include <immintrin.h>
+#endif
+
+namespace tricell::detail {
+
+namespace {
+
+// Writes hit n: atom a with atom b through range r, D = (dx, dy, dz), d^2 = d_sq, turned into
+// its canonical orientation in a half list. The one scalar definition of what a stored pair
+// is; the vector versions store the same bits.
+inline void store_hit(const RangeScanInput& in, std::uint32_t a, std::uint32_t b,
+                      const CandidateRange& r, double dx, double dy, double dz, double d_sq,
+                      const PairSlots& out, std::uint32_t n) {
+    const std::uint32_t i = in.index[a], j = in.index[b];
+    const bool turn = in.half && (i != j ? i > j : r.self_turn);
+    out.i[n] = turn ? j : i;
+    out.j[n] = turn ? i : j;
+    if (out.shifts != nullptr) {
+        std::int32_t s[3] = {r.s[0], r.s[1], r.s[2]};
+        if (!in.zero_images) {
+            for (int k = 0; k < 3; ++k) {
+                s[k] = (s[k] + in.image[3 * a + std::uint32_t(k)]) -
+                       in.image[3 * b + std::uint32_t(k)];
+            }
+        }
+        const std::int32_t sign = turn ? -1 : 1;
+        out.shifts[3 * n] = sign * s[0];
+        out.shifts[3 * n + 1] = sign * s[1];
+        out.shifts[3 * n + 2] = sign * s[2];
+    }
+    if (out.distances != nullptr) {
+        out.distances[n] = out.squares ? d_sq : std::sqrt(d_sq);
+    }
+    if (out.vectors != nullptr) {
+        const double t = turn ? -1.0 : 1.0;
+        out.vectors[3 * n] = t * dx + 0.0;
+        out.vectors[3 * n + 1] = t * dy + 0.0;
+        out.vectors[3 * n + 2] = t * dz + 0.0;
+    }
+}
+
+// The first candidate of range r for atom a: a half list takes only b > a in the own range.
+inline std::uint32_t first_candidate(const RangeScanInput& in, std::uint32_t a,
+                                     const CandidateRange& r) {
+    return r.own && in.half ? std::max(r.b0, a + 1) : r.b0;
+}
+
+// Atom a against candidates [b, r.b1) of range r, one at a time; returns the next free slot.
+inline std::uint32_t scan_scalar(const RangeScanInput& in, std::uint32_t a, std::uint32_t b,
+                                 const CandidateRange& r, const PairSlots& out, std::uint32_t n) {
+    const double ax = in.x[a], ay = in.y[a], az = in.z[a];
+    for (; b < r.b1; ++b) {
+        const double dx = (in.x[b] - ax) + r.v[0];
+        const double dy = (in.y[b] - ay) + r.v[1];
+        const double dz = (in.z[b] - az) + r.v[2];
+        const double d_sq = dx * dx + dy * dy + dz * dz;
+        if (d_sq < in.cutoff_sq && !(r.own && b == a)) {
+            store_hit(in, a, b, r, dx, dy, dz, d_sq, out, n++);
+        }
+    }
+    return n;
+}
+
+std::uint32_t scan_generic(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
+                           const CandidateRange* ranges, std::uint32_t count,
+                           const PairSlots& out) {
+    std::uint32_t n = 0;
+    for (std::uint32_t q = 0; q < count; ++q) {
+        for (std::uint32_t a = a0; a < a1; ++a) {
+            n = scan_scalar(in, a, first_candidate(in, a, ranges[q]), ranges[q], out, n);
+        }
+    }
+    return n;
+}
+
+#ifdef TRICELL_HAVE_AVX_RANGE_KERNELS
+
+// AVX2: four candidates at a time, the hits of a group stored one by one through store_hit().
+__attribute__((target("avx2"))) std::uint32_t scan_avx2(const RangeScanInput& in, std::uint32_t a0,
+                                                        std::uint32_t a1,
+                                                        const CandidateRange* ranges,
+                                                        std::uint32_t count, const PairSlots& out) {
+    const __m256d vcut = _mm256_set1_pd(in.cutoff_sq);
+    std::uint32_t n = 0;
+    for (std::uint32_t q = 0; q < count; ++q) {
+        const CandidateRange& r = ranges[q];
+        const __m256d vvx = _mm256_set1_pd(r.v[0]), vvy = _mm256_set1_pd(r.v[1]),
+                      vvz = _mm256_set1_pd(r.v[2]);
+        for (std::uint32_t a = a0; a < a1; ++a) {
+            const double ax = in.x[a], ay = in.y[a], az = in.z[a];
+            const __m256d vax = _mm256_set1_pd(ax), vay = _mm256_set1_pd(ay),
+                          vaz = _mm256_set1_pd(az);
+            std::uint32_t b = first_candidate(in, a, r);
+            for (; b + 4 <= r.b1; b += 4) {
+                const __m256d dx =
+                    _mm256_add_pd(_mm256_sub_pd(_mm256_loadu_pd(in.x + b), vax), vvx);
+                const __m256d dy =
+                    _mm256_add_pd(_mm256_sub_pd(_mm256_loadu_pd(in.y + b), vay), vvy);
+                const __m256d dz =
+                    _mm256_add_pd(_mm256_sub_pd(_mm256_loadu_pd(in.z + b), vaz), vvz);
+                const __m256d d_sq =
+                    _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy)),
+                                  _mm256_mul_pd(dz, dz));
+                unsigned mask = unsigned(_mm256_movemask_pd(_mm256_cmp_pd(d_sq, vcut, _CMP_LT_OQ)));
+                if (r.own && a >= b && a < b + 4) {
+                    mask &= ~(1u << (a - b));
+                }
+                if (mask == 0) {
+                    continue;
+                }
+                alignas(32) double lx[4], ly[4], lz[4], ld[4];
+                _mm256_store_pd(lx, dx);
+                _mm256_store_pd(ly, dy);
+                _mm256_store_pd(lz, dz);
+                _mm256_store_pd(ld, d_sq);
+                while (mask != 0) {
+                    const unsigned lane = unsigned(__builtin_ctz(mask));
+                    mask &= mask - 1;
+                    store_hit(in, a, b + lane, r, lx[lane], ly[lane], lz[lane], ld[lane], out, n++);
+                }
+            }
+            n = scan_scalar(in, a, b, r, out, n);
+        }
+    }
+    return n;
+}
+
+// Each of the 256 8-bit masks spread to 24 bits, one bit thrice per lane: which of the 24
+// shift components of 8 compressed pairs belong to a pair turned around.
+struct TripleMasks {
+    std::uint32_t bits[256];
+    TripleMasks() {
+        for (std::uint32_t m = 0; m < 256; ++m) {
+            bits[m] = 0;
+            for (std::uint32_t lane = 0; lane < 8; ++lane) {
+                if ((m >> lane) & 1u) {
+                    bits[m] |= 7u << (3 * lane);
+                }
+            }
+        }
+    }
+};
+
+const TripleMasks triple_masks;
+
+// AVX-512: eight candidates at a time through masked loads; a block's hits are compressed in
+// registers and stored whole (the slots have kernel_slack room): i, j (turned with min/max in a
+// half list), d and, with every image 0, S as the range's shift or its negative per lane. D, and
+// S with images, are written per hit from the compressed lanes.
+__attribute__((target("avx512f,avx512vl,avx512dq,bmi2"))) std::uint32_t
+scan_avx512(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
+            const CandidateRange* ranges, std::uint32_t count, const PairSlots& out) {
+    // Locals: the vector stores below may alias anything, so fields read through `in` and
+    // `out` would be read again after each.
+    const double* const x = in.x;
+    const double* const y = in.y;
+    const double* const z = in.z;
+    const std::uint32_t* const index = in.index;
+    const std::int32_t* const image = in.image;
+    const bool half = in.half, zero_images = in.zero_images;
+    const double cutoff_sq = in.cutoff_sq;
+    std::uint32_t* const oi = out.i;
+    std::uint32_t* const oj = out.j;
+    std::int32_t* const os = out.shifts;
+    double* const od = out.distances;
+    double* const ov = out.vectors;
+    const bool squares = out.squares;
+    const __m512d vcut = _mm512_set1_pd(cutoff_sq);
+    const __m256i lanes = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+    std::uint32_t n = 0;
+    for (std::uint32_t q = 0; q < count; ++q) {
+        const CandidateRange& r = ranges[q];
+        const std::uint32_t b1 = r.b1;
+        const bool own = r.own, self_turn = r.self_turn;
+        const std::int32_t rs[3] = {r.s[0], r.s[1], r.s[2]};
+        const __m512d vvx = _mm512_set1_pd(r.v[0]), vvy = _mm512_set1_pd(r.v[1]),
+                      vvz = _mm512_set1_pd(r.v[2]);
+        // S of 8 pairs through r with every image 0: 24 ints.
+        const __m512i s_lo =
+            _mm512_setr_epi32(rs[0], rs[1], rs[2], rs[0], rs[1], rs[2], rs[0], rs[1], rs[2], rs[0],
+                              rs[1], rs[2], rs[0], rs[1], rs[2], rs[0]);
+        const __m256i s_hi =
+            _mm256_setr_epi32(rs[1], rs[2], rs[0], rs[1], rs[2], rs[0], rs[1], rs[2]);
+        for (std::uint32_t a = a0; a < a1; ++a) {
+            const __m512d vax = _mm512_set1_pd(x[a]), vay = _mm512_set1_pd(y[a]),
+                          vaz = _mm512_set1_pd(z[a]);
+            const __m256i vi = _mm256_set1_epi32(std::int32_t(index[a]));
+            for (std::uint32_t b = first_candidate(in, a, r); b < b1; b += 8) {
+                const __mmask8 valid =
+                    b1 - b >= 8 ? __mmask8(0xFF) : __mmask8((1u << (b1 - b)) - 1);
+                const __m512d dx =
+                    _mm512_add_pd(_mm512_sub_pd(_mm512_maskz_loadu_pd(valid, x + b), vax), vvx);
+                const __m512d dy =
+                    _mm512_add_pd(_mm512_sub_pd(_mm512_maskz_loadu_pd(valid, y + b), vay), vvy);
+                const __m512d dz =
+                    _mm512_add_pd(_mm512_sub_pd(_mm512_maskz_loadu_pd(valid, z + b), vaz), vvz);
+                const __m512d d_sq =
+                    _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy)),
+                                  _mm512_mul_pd(dz, dz));
+                unsigned hit = _mm512_mask_cmp_pd_mask(valid, d_sq, vcut, _CMP_LT_OQ);
+                const bool self_lane = a >= b && a < b + 8;
+                if (own && self_lane) {
+                    hit &= ~(1u << (a - b));
+                }
+                // No branch on the hits (a block holds none about as often as some): a block
+                // without any stores registers that the next one overwrites.
+                const std::uint32_t found = std::uint32_t(__builtin_popcount(hit));
+                const __m256i vj = _mm256_maskz_loadu_epi32(__mmask8(hit), index + b);
+                // Lanes turned around (a half list): i > j, or an atom's own image the range turns.
+                unsigned turn = 0;
+                if (half) {
+                    turn = _mm256_mask_cmpgt_epu32_mask(__mmask8(hit), vi, vj);
+                    if (self_lane && self_turn) {
+                        turn |= hit & (1u << (a - b));
+                    }
+                    _mm256_storeu_si256(
+                        reinterpret_cast<__m256i*>(oi + n),
+                        _mm256_maskz_compress_epi32(__mmask8(hit), _mm256_min_epu32(vi, vj)));
+                    _mm256_storeu_si256(
+                        reinterpret_cast<__m256i*>(oj + n),
+                        _mm256_maskz_compress_epi32(__mmask8(hit), _mm256_max_epu32(vi, vj)));
+                } else {
+                    _mm256_storeu_si256(reinterpret_cast<__m256i*>(oi + n), vi);
+                    _mm256_storeu_si256(reinterpret_cast<__m256i*>(oj + n),
+                                        _mm256_maskz_compress_epi32(__mmask8(hit), vj));
+                }
+                // The turned lanes among the stored ones, in their compressed places.
+                const unsigned turned = unsigned(_pext_u32(turn, hit));
+                if (od != nullptr) {
+                    // d^2 for now: the square roots are taken together at the end.
+                    _mm512_storeu_pd(od + n, _mm512_maskz_compress_pd(__mmask8(hit), d_sq));
+                }
+                if (os != nullptr && zero_images) {
+                    // S of the 8 pairs, negated where turned.
+                    const std::uint32_t negative = triple_masks.bits[turned];
+                    std::int32_t* s = os + 3 * std::size_t(n);
+                    _mm512_storeu_si512(s, _mm512_mask_sub_epi32(s_lo, __mmask16(negative),
+                                                                 _mm512_setzero_si512(), s_lo));
+                    _mm256_storeu_si256(reinterpret_cast<__m256i*>(s + 16),
+                                        _mm256_mask_sub_epi32(s_hi, __mmask8(negative >> 16),
+                                                              _mm256_setzero_si256(), s_hi));
+                }
+                const bool shifts_per_hit = os != nullptr && !zero_images;
+                if (shifts_per_hit || ov != nullptr) {
+                    alignas(64) double lx[8], ly[8], lz[8];
+                    alignas(32) std::int32_t lb[8];
+                    _mm512_store_pd(lx, _mm512_maskz_compress_pd(__mmask8(hit), dx));
+                    _mm512_store_pd(ly, _mm512_maskz_compress_pd(__mmask8(hit), dy));
+                    _mm512_store_pd(lz, _mm512_maskz_compress_pd(__mmask8(hit), dz));
+                    _mm256_store_si256(reinterpret_cast<__m256i*>(lb),
+                                       _mm256_maskz_compress_epi32(__mmask8(hit), lanes));
+                    for (std::uint32_t h = 0; h < found; ++h) {
+                        const bool t = (turned >> h) & 1u;
+                        const std::size_t p = std::size_t(n + h);
+                        if (shifts_per_hit) {
+                            const std::uint32_t c = b + std::uint32_t(lb[h]);
+                            const std::int32_t sign = t ? -1 : 1;
+                            for (std::uint32_t k = 0; k < 3; ++k) {
+                                os[3 * p + k] =
+                                    sign * ((rs[k] + image[3 * a + k]) - image[3 * c + k]);
+                            }
+                        }
+                        if (ov != nullptr) {
+                            const double sign = t ? -1.0 : 1.0;
+                            ov[3 * p] = sign * lx[h] + 0.0;
+                            ov[3 * p + 1] = sign * ly[h] + 0.0;
+                            ov[3 * p + 2] = sign * lz[h] + 0.0;
+                        }
+                    }
+                }
+                n += found;
+            }
+        }
+    }
+    if (od != nullptr && !squares) {
+        for (std::uint32_t k = 0; k < n; k += 8) {
+            _mm512_storeu_pd(od + k, _mm512_maskz_sqrt_pd(0xff, _mm512_loadu_pd(od + k)));
+        }
+    }
+    return n;
+}
+
+#endif
+
+} // namespace
+
+std::vector<RangeKernelVersion> range_kernels() {
+    std::vector<RangeKernelVersion> out;
+#ifdef TRICELL_HAVE_AVX_RANGE_KERNELS
+    __builtin_cpu_init();
+    if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+        __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("bmi2")) {
+        out.push_back({"avx512", scan_avx512});
+    }
+    if (__builtin_cpu_supports("avx2")) {
+        out.push_back({"avx2", scan_avx2});
+    }
+#endif
+    out.push_back({"generic", scan_generic});
+    return out;
+}
+
+RangeKernel range_kernel() {
+    static const RangeKernel chosen = range_kernels().front().scan;
+    return chosen;
+}
+
+} // namespace tricell::detail

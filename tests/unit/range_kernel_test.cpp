@@ -1,0 +1,158 @@
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "scan/distance_kernel.hpp"
+#include "scan/range_kernel.hpp"
+
+using tricell::detail::CandidateRange;
+using tricell::detail::kernel_slack;
+using tricell::detail::PairSlots;
+using tricell::detail::range_kernels;
+using tricell::detail::RangeScanInput;
+
+namespace {
+
+// One random scan: atoms in a small box, ranges of them through random shifts (a zero shift
+// over the home atoms on some), a full or half list, images or none, and some columns left out.
+struct Case {
+    std::vector<double> x, y, z;
+    std::vector<std::uint32_t> index;
+    std::vector<std::int32_t> image;
+    std::vector<CandidateRange> ranges;
+    RangeScanInput in{};
+    std::uint32_t a0 = 0, a1 = 0, candidates = 0;
+    bool shifts = true, distances = true, vectors = true, squares = false;
+};
+
+Case random_case(std::mt19937_64& rng, int trial) {
+    std::uniform_real_distribution<double> u(-2, 2);
+    Case c;
+    const std::uint32_t atoms = 1 + std::uint32_t(rng() % 40);
+    for (std::uint32_t k = 0; k < atoms; ++k) {
+        c.x.push_back(u(rng)), c.y.push_back(u(rng)), c.z.push_back(u(rng));
+        c.index.push_back(k);
+        for (int axis = 0; axis < 3; ++axis) {
+            c.image.push_back(std::int32_t(rng() % 5) - 2);
+        }
+    }
+    // The caller's indices, shuffled (each atom once: i == j only for an atom's own image).
+    std::shuffle(c.index.begin(), c.index.end(), rng);
+    c.a0 = std::uint32_t(rng() % atoms);
+    c.a1 = c.a0 + 1 + std::uint32_t(rng() % std::min<std::uint32_t>(8, atoms - c.a0));
+    const std::uint32_t count = std::uint32_t(rng() % 6);
+    for (std::uint32_t q = 0; q < count; ++q) {
+        CandidateRange r{};
+        r.own = q == 0 && trial % 2 == 0;
+        if (r.own) {
+            // the home cell: its atoms from a0, at least up to a1
+            r.b0 = c.a0, r.b1 = std::uint32_t(c.a1 + rng() % (atoms - c.a1 + 1));
+        } else {
+            r.b0 = std::uint32_t(rng() % atoms);
+            r.b1 = r.b0 + std::uint32_t(rng() % (atoms - r.b0 + 1));
+        }
+        for (int axis = 0; axis < 3; ++axis) {
+            r.s[axis] = r.own ? 0 : std::int32_t(rng() % 3) - 1;
+            r.v[axis] = r.own ? 0.0 : 1.7 * r.s[axis] + 0.3 * u(rng);
+        }
+        r.self_turn = rng() % 2 == 0;
+        c.candidates += (c.a1 - c.a0) * (r.b1 - r.b0);
+        c.ranges.push_back(r);
+    }
+    // A candidate exactly at the cutoff (not a pair) and one exactly on an atom.
+    if (atoms > 2) {
+        c.x[atoms - 1] = c.x[c.a0] + 1.5, c.y[atoms - 1] = c.y[c.a0], c.z[atoms - 1] = c.z[c.a0];
+        c.x[atoms - 2] = c.x[c.a0], c.y[atoms - 2] = c.y[c.a0], c.z[atoms - 2] = c.z[c.a0];
+    }
+    c.in.x = c.x.data(), c.in.y = c.y.data(), c.in.z = c.z.data();
+    c.in.index = c.index.data(), c.in.image = c.image.data();
+    c.in.zero_images = trial % 3 == 0;
+    c.in.cutoff_sq = 2.25;
+    c.in.half = trial % 4 >= 2;
+    c.shifts = trial % 5 != 1, c.distances = trial % 7 != 2, c.vectors = trial % 3 != 2;
+    c.squares = trial % 11 == 3;
+    return c;
+}
+
+// The columns one kernel writes for a case.
+struct Columns {
+    std::vector<std::uint32_t> i, j;
+    std::vector<std::int32_t> s;
+    std::vector<double> d, v;
+    std::uint32_t n = 0;
+};
+
+Columns run(tricell::detail::RangeKernel scan, const Case& c) {
+    Columns out;
+    const std::size_t room = c.candidates + kernel_slack;
+    out.i.resize(room), out.j.resize(room), out.s.resize(3 * room), out.d.resize(room);
+    out.v.resize(3 * room);
+    const PairSlots slots{out.i.data(),
+                          out.j.data(),
+                          c.shifts ? out.s.data() : nullptr,
+                          c.distances ? out.d.data() : nullptr,
+                          c.vectors ? out.v.data() : nullptr,
+                          c.squares};
+    out.n = scan(c.in, c.a0, c.a1, c.ranges.data(), std::uint32_t(c.ranges.size()), slots);
+    return out;
+}
+
+} // namespace
+
+// Every range kernel this processor can run (AVX-512, AVX2, the portable one) writes the same
+// pairs in the same order with the same bits as the portable one, for any mix of ranges, own
+// ranges, images, half lists and stored columns; and the portable one finds exactly the
+// candidates with d^2 < cutoff^2, one pair each, in the canonical orientation of a half list.
+TEST(RangeKernel, EveryVersionMatchesThePortableOneBitForBit) {
+    const auto versions = range_kernels();
+    ASSERT_EQ(std::string(versions.back().name), "generic");
+    std::mt19937_64 rng(41);
+    for (int trial = 0; trial < 4000; ++trial) {
+        SCOPED_TRACE(trial);
+        const Case c = random_case(rng, trial);
+        const Columns expected = run(versions.back().scan, c);
+        std::uint32_t hits = 0;
+        for (const CandidateRange& r : c.ranges) {
+            for (std::uint32_t a = c.a0; a < c.a1; ++a) {
+                const std::uint32_t first = r.own && c.in.half ? std::max(r.b0, a + 1) : r.b0;
+                for (std::uint32_t b = first; b < r.b1; ++b) {
+                    const double dx = (c.x[b] - c.x[a]) + r.v[0], dy = (c.y[b] - c.y[a]) + r.v[1],
+                                 dz = (c.z[b] - c.z[a]) + r.v[2];
+                    hits += dx * dx + dy * dy + dz * dz < c.in.cutoff_sq && !(r.own && a == b);
+                }
+            }
+        }
+        ASSERT_EQ(expected.n, hits);
+        for (std::uint32_t p = 0; p < expected.n && c.in.half; ++p) {
+            ASSERT_LE(expected.i[p], expected.j[p]);
+        }
+        for (const auto& version : versions) {
+            SCOPED_TRACE(version.name);
+            const Columns got = run(version.scan, c);
+            ASSERT_EQ(got.n, expected.n);
+            for (std::uint32_t p = 0; p < got.n; ++p) {
+                ASSERT_EQ(got.i[p], expected.i[p]) << p;
+                ASSERT_EQ(got.j[p], expected.j[p]) << p;
+                for (int k = 0; k < 3; ++k) {
+                    if (c.shifts) {
+                        ASSERT_EQ(got.s[3 * p + k], expected.s[3 * p + k]) << p;
+                    }
+                    if (c.vectors) {
+                        // bit for bit, +0 and -0 told apart
+                        ASSERT_EQ(std::signbit(got.v[3 * p + k]),
+                                  std::signbit(expected.v[3 * p + k]));
+                        ASSERT_EQ(got.v[3 * p + k], expected.v[3 * p + k]) << p;
+                    }
+                }
+                if (c.distances) {
+                    ASSERT_EQ(got.d[p], expected.d[p]) << p;
+                }
+            }
+        }
+    }
+}
