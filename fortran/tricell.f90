@@ -44,6 +44,9 @@ module tricell
         integer(c_size_t) :: species_cutoff_count
         type(c_ptr) :: query
         integer(c_size_t) :: query_count
+        integer(c_size_t) :: max_neighbors
+        real(c_double) :: tie_tolerance
+        integer(c_int) :: symmetric
     end type
 
     type, bind(c) :: c_verlet_options
@@ -210,12 +213,17 @@ contains
     !> shifts and distances (stored unless .false.), vectors
     !> (stored if .true.), threads (default 1, 0 = all cores), backend (TRICELL_BACKEND_*), and a
     !> per-species cutoff table: species_pairs(:, k) = [a, b] with species_cutoffs(k) (then
-    !> cutoff is 0 and compute() takes species). Options are checked by compute().
+    !> cutoff is 0 and compute() takes species); max_neighbors (the k nearest within the cutoff,
+    !> each atom's pairs by distance with offsets), tie_tolerance and symmetric as in the C API.
+    !> Options are checked by compute().
     function new_neighbor_list(cutoff, half, sorted, shifts, distances, vectors, threads, &
-                               backend, species_pairs, species_cutoffs, grouped) result(self)
+                               backend, species_pairs, species_cutoffs, grouped, max_neighbors, &
+                               tie_tolerance, symmetric) result(self)
         real(c_double), intent(in) :: cutoff
         logical, intent(in), optional :: half, sorted, shifts, distances, vectors, grouped
-        integer, intent(in), optional :: threads, backend
+        logical, intent(in), optional :: symmetric
+        integer, intent(in), optional :: threads, backend, max_neighbors
+        real(c_double), intent(in), optional :: tie_tolerance
         integer, intent(in), optional :: species_pairs(:, :)
         real(c_double), intent(in), optional :: species_cutoffs(:)
         type(tricell_neighbor_list) :: self
@@ -232,6 +240,9 @@ contains
         if (present(vectors)) self%options%vectors = merge(1, 0, vectors)
         if (present(threads)) self%options%threads = int(threads, c_int)
         if (present(backend)) self%options%backend = int(backend, c_int)
+        if (present(max_neighbors)) self%options%max_neighbors = int(max_neighbors, c_size_t)
+        if (present(tie_tolerance)) self%options%tie_tolerance = tie_tolerance
+        if (present(symmetric)) self%options%symmetric = merge(1, 0, symmetric)
         if (present(species_pairs) .and. present(species_cutoffs)) then
             allocate (self%table(min(size(species_pairs, 2), size(species_cutoffs))))
             do k = 1, size(self%table)

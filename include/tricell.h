@@ -71,7 +71,9 @@ TRICELL_C_API int tricell_version_patch(void);
 
 /* A validated box, a plain value (no destroy). vectors[k] is lattice vector k (0 = a, 1 = b,
  * 2 = c) in Cartesian components; periodic[k] is 0 or 1. Filled by the functions below; a box
- * written by hand is checked again by every function that takes it. */
+ * written by hand is checked again by every function that takes it. Open axes need no vector: a
+ * zero one (a molecule's all-zero box, a slab's zero c) is completed by a unit vector orthogonal
+ * to the others (docs/contract.md), which the functions below write into vectors. */
 typedef struct tricell_box {
     double vectors[3][3];
     int periodic[3];
@@ -142,6 +144,14 @@ typedef struct tricell_neighbor_options {
      * point is a neighbour; read during the call only. */
     const uint32_t* query;
     size_t query_count;
+    /* The k nearest within the cutoff (0: every pair). At most max_neighbors pairs per centre,
+     * ranked by (d, j, S); the list comes grouped by i in that order, with offsets. Full lists
+     * only (half and sorted must be 0). tie_tolerance (finite, >= 0): every other pair with
+     * d <= d_k + tie_tolerance is kept too, d_k the centre's k-th distance. symmetric (0 or 1):
+     * (j, i, -S) is kept wherever (i, j, S) is, so no edge is kept at one end only. */
+    size_t max_neighbors;
+    double tie_tolerance;
+    int symmetric;
 } tricell_neighbor_options;
 
 TRICELL_C_API tricell_status tricell_neighbor_options_init(tricell_neighbor_options* options);
@@ -243,6 +253,23 @@ TRICELL_C_API tricell_status tricell_neighbors_batch(const tricell_structure* st
                                                      const tricell_neighbor_options* options,
                                                      tricell_batch_list* list);
 
+/* How i and j of a batch number the atoms. */
+typedef enum tricell_batch_indices {
+    TRICELL_BATCH_LOCAL = 0, /* from 0 within each structure (as tricell_neighbors_batch) */
+    TRICELL_BATCH_GLOBAL = 1 /* among all atoms of the batch in structure order: atom_offsets[s]
+                              * + the local index, the index into the concatenated positions when
+                              * the structures' positions lie one after another in one array
+                              * (at most 2^32 - 1 atoms in all) */
+} tricell_batch_indices;
+
+/* tricell_neighbors_batch with the atoms numbered as `indices` (a tricell_batch_indices) says.
+ * Concatenated positions (N_total x 3 with per-structure offsets, as machine-learning codes pass
+ * a batch) need no copy: point each structure's positions into the one array and ask for
+ * TRICELL_BATCH_GLOBAL. */
+TRICELL_C_API tricell_status tricell_neighbors_batch_indexed(
+    const tricell_structure* structures, size_t count, const tricell_neighbor_options* options,
+    int indices, tricell_batch_list* list);
+
 /* A view of a batch's lists (pointers into its arrays, no copy; valid until the next call that
  * changes or destroys the list). */
 typedef struct tricell_batch_pairs {
@@ -252,8 +279,9 @@ typedef struct tricell_batch_pairs {
     const size_t* atom_offsets; /* structures + 1: structure s's atoms are numbered
                                    atom_offsets[s] .. atom_offsets[s + 1] - 1 among all atoms */
     tricell_pairs pairs;        /* every pair; i and j number the atoms of their own structure
-                                   from 0. When sorted, pairs.atoms is the total atom count and
-                                   atom a of structure s has the pairs
+                                   from 0 (or all atoms, TRICELL_BATCH_GLOBAL). With offsets
+                                   (sorted, grouped, max_neighbors), pairs.atoms is the total
+                                   atom count and atom a of structure s has the pairs
                                    [offsets[k], offsets[k + 1]) with k = atom_offsets[s] + a */
 } tricell_batch_pairs;
 

@@ -51,6 +51,16 @@ template <class T> void append(PairArray<T>& to, const PairArray<T>& from) {
     to.insert(to.end(), from.begin(), from.end());
 }
 
+// Appends all of `from` to `to`, each index plus `shift`.
+void append(PairArray<std::uint32_t>& to, const PairArray<std::uint32_t>& from,
+            std::uint32_t shift) {
+    const std::size_t at = to.size();
+    to.resize(at + from.size());
+    for (std::size_t k = 0; k < from.size(); ++k) {
+        to[at + k] = from[k] + shift;
+    }
+}
+
 using detail::run_in_threads; // detail/parallel.hpp
 
 } // namespace
@@ -67,8 +77,9 @@ void BatchList::clear() {
 }
 
 void compute_neighbors_batch(const BatchStructure* structures, std::size_t count,
-                             const NeighborOptions& options, BatchList& out) {
+                             const NeighborOptions& options, BatchList& out, BatchIndices indices) {
     out.clear();
+    out.indices_ = indices;
     options.validate();
     if (count > 0 && structures == nullptr) {
         detail::fail<InvalidArgument>("structures: null data for ", count, " structures");
@@ -78,6 +89,12 @@ void compute_neighbors_batch(const BatchStructure* structures, std::size_t count
     std::size_t all_atoms = 0;
     for (std::size_t s = 0; s < count; ++s) {
         all_atoms += structures[s].positions.size();
+    }
+    const bool global = indices == BatchIndices::global;
+    if (global && all_atoms > std::numeric_limits<std::uint32_t>::max()) {
+        detail::fail<InvalidArgument>("global indices number at most ",
+                                      std::numeric_limits<std::uint32_t>::max(),
+                                      " atoms, but the batch has ", all_atoms);
     }
     const detail::ListLimits limits(options, all_atoms);
     const char* const batch_over_limit = "the batch has too many pairs in total";
@@ -107,7 +124,14 @@ void compute_neighbors_batch(const BatchStructure* structures, std::size_t count
         columns.clear();
         w.pairs.clear();
         w.offsets.clear();
+        // The first atom of the run's first structure among all atoms of the batch.
+        std::size_t first_atom = 0;
+        for (std::size_t s = 0; s < bounds[t]; ++s) {
+            first_atom += structures[s].positions.size();
+        }
         for (std::size_t s = bounds[t]; s < bounds[t + 1]; ++s) {
+            const auto atom_shift = std::uint32_t(global ? first_atom : 0);
+            first_atom += structures[s].positions.size();
             if (s > first_failure.load(std::memory_order_relaxed)) {
                 return;
             }
@@ -118,8 +142,8 @@ void compute_neighbors_batch(const BatchStructure* structures, std::size_t count
                 if (limits.pairs() != 0 && columns.size() + list.size() > limits.pairs()) {
                     limits.fail_size(columns.size() + list.size(), batch_over_limit);
                 }
-                append(columns.i, list.i());
-                append(columns.j, list.j());
+                append(columns.i, list.i(), atom_shift);
+                append(columns.j, list.j(), atom_shift);
                 append(columns.shifts, list.shifts());
                 append(columns.distances, list.distances());
                 append(columns.vectors, list.vectors());
@@ -220,8 +244,8 @@ void compute_neighbors_batch(const BatchStructure* structures, std::size_t count
 }
 
 void compute_neighbors_batch(const std::vector<BatchStructure>& structures,
-                             const NeighborOptions& options, BatchList& out) {
-    compute_neighbors_batch(structures.data(), structures.size(), options, out);
+                             const NeighborOptions& options, BatchList& out, BatchIndices indices) {
+    compute_neighbors_batch(structures.data(), structures.size(), options, out, indices);
 }
 
 } // namespace tricell

@@ -7,6 +7,7 @@
 #include <Eigen/LU>
 
 #include "detail/lattice_reduction.hpp"
+#include "detail/open_axes.hpp"
 #include "detail/pi.hpp"
 #include "tricell/error.hpp"
 
@@ -16,7 +17,7 @@ namespace {
 
 constexpr const char* axis_name[3] = {"a", "b", "c"};
 // A box whose |det H| is below this fraction of |a||b||c| is treated as flat.
-constexpr double flatness_tolerance = 1e-10;
+using detail::flatness_tolerance;
 
 double degrees(double radians) {
     return radians * 180.0 / detail::pi;
@@ -28,6 +29,30 @@ double radians(double degrees) {
 double angle_between(const Eigen::Vector3d& u, const Eigen::Vector3d& v) {
     const double c = u.dot(v) / (u.norm() * v.norm());
     return degrees(std::acos(std::clamp(c, -1.0, 1.0)));
+}
+
+// Refuses periodic vectors that are linearly dependent (nearly), naming them.
+void check_periodic_vectors(const Eigen::Matrix3d& h, const Periodicity& pbc) {
+    if (pbc.count() < 2) {
+        return;
+    }
+    const double flatness = detail::unit_flatness(h, pbc.axes);
+    if (flatness > flatness_tolerance) {
+        return;
+    }
+    if (pbc.count() == 3) {
+        detail::fail<GeometryError>(
+            "box is singular or nearly flat: the periodic lattice vectors a, b and c are "
+            "coplanar or nearly so, |det H| / (|a||b||c|) = ",
+            flatness, " (|det H| = ", std::abs(h.determinant()), "; at most ", flatness_tolerance,
+            " is flat)");
+    }
+    const int first = pbc[0] ? 0 : 1, second = pbc[2] ? 2 : 1;
+    detail::fail<GeometryError>(
+        "box is singular or nearly flat: the periodic lattice vectors ", axis_name[first], " and ",
+        axis_name[second], " are parallel or nearly so, |", axis_name[first], " x ",
+        axis_name[second], "| / (|", axis_name[first], "||", axis_name[second], "|) = ", flatness,
+        " (at most ", flatness_tolerance, " is flat)");
 }
 
 } // namespace
@@ -47,6 +72,8 @@ Box::Box(const Eigen::Matrix3d& h, Periodicity pbc) : h_(h), pbc_(pbc) {
                                         axis_name[axis], " is periodic");
         }
     }
+    check_periodic_vectors(h_, pbc_);
+    h_ = detail::complete_open_axes(h_, pbc_);
     det_ = h_.determinant();
     // The squared lengths and the volume must be doubles: past them the inverse is zero or NaN.
     const Eigen::Vector3d squared_lengths = h_.colwise().squaredNorm();

@@ -19,6 +19,10 @@ void VerletOptions::validate() const {
             "the Verlet list takes one cutoff (neighbors.cutoff); radii and species_cutoffs are "
             "for NeighborSearch");
     }
+    if (neighbors.max_neighbors != 0) {
+        detail::fail<InvalidArgument>("the Verlet list keeps every pair within the cutoff: "
+                                      "max_neighbors is for NeighborSearch");
+    }
     neighbors.validate();
     if (!std::isfinite(skin)) {
         detail::fail<InvalidArgument>("skin must be finite (got ", skin, ")");

@@ -4,8 +4,12 @@
 // compute_neighbors_batch() gives every structure exactly the list compute_neighbors() gives
 // it alone (same pairs, same order, same bits), and stores all of them one after the other in
 // shared struct-of-arrays columns: the pairs of structure s are [pair_offsets[s],
-// pair_offsets[s + 1]), with i and j numbering the atoms of s from 0. One NeighborOptions
-// applies to every structure.
+// pair_offsets[s + 1]), with i and j numbering the atoms of s from 0 or, asked for global
+// indices, all atoms of the batch in structure order. A front whose structures are concatenated
+// in one array (N_total x 3, with a pointer array batch_ptr as machine-learning codes pass
+// them) makes each BatchStructure a view into that array, without a copy, and asks for global
+// indices: i and j are then indices into the concatenated positions. No pair ever joins two
+// structures, also when they overlap in space. One NeighborOptions applies to every structure.
 //
 // Threads work across structures, not inside one: the structures are cut into contiguous runs
 // of about equal estimated cost (a fixed cost per call, one per atom, and the pairs expected
@@ -46,11 +50,23 @@ struct BatchWorker; // one thread's search object and scratch list (lib/batch.cp
 
 class BatchList;
 
+/// How i and j number the atoms of a batch.
+enum class BatchIndices {
+    /// From 0 within each structure.
+    local,
+    /// Among all atoms of the batch in structure order: atom_offsets()[s] + the local index, the
+    /// index into the concatenated positions when the structures' views lie one after another in
+    /// one array. At most 2^32 - 1 atoms in all.
+    global,
+};
+
 /// Computes the neighbour list of each of `count` structures with `options` (validated once;
-/// options.threads threads across structures, 0 = all hardware threads) into `out`. On error
-/// `out` is left empty and the message names the structure.
+/// options.threads threads across structures, 0 = all hardware threads) into `out`, numbering
+/// the atoms as `indices` says. On error `out` is left empty and the message names the
+/// structure.
 TRICELL_API void compute_neighbors_batch(const BatchStructure* structures, std::size_t count,
-                                         const NeighborOptions& options, BatchList& out);
+                                         const NeighborOptions& options, BatchList& out,
+                                         BatchIndices indices = BatchIndices::local);
 
 /// The lists of a batch, struct-of-arrays. Reuse one object across calls to keep its buffers.
 class TRICELL_API BatchList {
@@ -76,7 +92,10 @@ class TRICELL_API BatchList {
     /// all atoms of the batch (the index space of offsets()); size count + 1.
     const std::vector<std::size_t>& atom_offsets() const { return atom_offsets_; }
 
-    /// Atom indices within their own structure (0-based per structure).
+    /// How i and j number the atoms (as the last call asked).
+    BatchIndices indices() const { return indices_; }
+    /// Atom indices within their own structure (0-based per structure), or among all atoms of
+    /// the batch with BatchIndices::global (see indices()).
     const PairArray<std::uint32_t>& i() const { return columns_.i; }
     const PairArray<std::uint32_t>& j() const { return columns_.j; }
     /// 3 ints per pair, empty unless Quantities::shifts.
@@ -94,15 +113,17 @@ class TRICELL_API BatchList {
 
   private:
     friend void compute_neighbors_batch(const BatchStructure*, std::size_t, const NeighborOptions&,
-                                        BatchList&);
+                                        BatchList&, BatchIndices);
     PairColumns columns_;
     std::vector<std::size_t> pair_offsets_, atom_offsets_;
+    BatchIndices indices_ = BatchIndices::local;
     // One per thread of the last call, kept so that their buffers are reused.
     std::vector<detail::BatchWorker> workers_;
 };
 
 /// The same for a vector of structures.
 TRICELL_API void compute_neighbors_batch(const std::vector<BatchStructure>& structures,
-                                         const NeighborOptions& options, BatchList& out);
+                                         const NeighborOptions& options, BatchList& out,
+                                         BatchIndices indices = BatchIndices::local);
 
 } // namespace tricell

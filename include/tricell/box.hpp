@@ -4,7 +4,10 @@
 // coordinates s sits at r = H s. Files and Python tools list the vectors as rows; the named
 // constructors from_rows() and from_columns() make the orientation explicit, and no function
 // takes an unnamed 3x3 matrix. Each axis is periodic or open; along an open axis positions are
-// never wrapped and the lattice vector only defines the frame.
+// never wrapped and the lattice vector only defines the frame, so none is needed there: a zero
+// vector of an open axis (a molecule's all-zero box, a slab's zero c), or open vectors that do
+// not span space with the periodic ones, are completed by unit vectors orthogonal to the others
+// (docs/contract.md), and matrix() returns the completed vectors.
 //
 // Perpendicular widths w_a = 1 / |row a of H^-1| (distances between opposite faces), not edge
 // lengths, decide how many cells of a given size fit along an axis. The minimum image is the
@@ -47,7 +50,8 @@ struct MinimumImage {
 
 class TRICELL_API Box {
   public:
-    /// Lattice vectors as the columns of h (r = H s).
+    /// Lattice vectors as the columns of h (r = H s). Along open axes a zero vector is completed
+    /// (see above); periodic vectors must be nonzero and independent (GeometryError naming them).
     static Box from_columns(const Eigen::Matrix3d& h, Periodicity pbc = Periodicity::all());
     /// Lattice vectors as the rows of m (as POSCAR, extended XYZ, ASE and pymatgen list them).
     static Box from_rows(const Eigen::Matrix3d& m, Periodicity pbc = Periodicity::all());

@@ -104,6 +104,20 @@ struct TRICELL_API NeighborOptions {
     /// consecutive, in the order the search found them (the same for every thread count, not
     /// across backends). One counting pass, cheaper than `sorted`, which implies it.
     bool grouped = false;
+    /// At most this many pairs per centre among those the cutoff allows, nearest first: the
+    /// k nearest within r, as machine-learning potentials build their graphs; 0 means no limit.
+    /// Each centre's pairs are ranked by (d, j, S), which makes the k kept the same on every
+    /// backend and thread count, and are stored grouped by i in that order, with offsets (d and
+    /// S are computed for the ranking whether stored or not). Full lists only (half and sorted
+    /// are refused); max_pairs and max_bytes bound the full list it selects from.
+    std::size_t max_neighbors = 0;
+    /// With max_neighbors: every other pair with d <= d_k + tie_tolerance is kept too, d_k being
+    /// the k-th distance of its centre (FAIRChem's degeneracy rule, whose k is max_neighbors - 1:
+    /// its mask compares with the (k+1)-th distance). Finite and >= 0; 0 keeps exactly k.
+    double tie_tolerance = 0;
+    /// With max_neighbors: keep (j, i, -S) wherever (i, j, S) is kept, so that no edge is kept
+    /// at one end and dropped at the other (a centre may then hold more than max_neighbors).
+    bool symmetric = false;
     Quantities quantities;
     SearchBackend backend = SearchBackend::automatic;
     /// Target cells per cutoff along each axis (>= 1), grid backends; 0 lets the search choose
@@ -146,8 +160,9 @@ struct TRICELL_API NeighborOptions {
     void validate() const;
     /// True when radii or species_cutoffs decide which pairs count.
     bool variable_cutoff() const { return !radii.empty() || !species_cutoffs.empty(); }
-    /// True when the list comes grouped by i with per-atom offsets (grouped or sorted).
-    bool with_offsets() const { return grouped || sorted; }
+    /// True when the list comes grouped by i with per-atom offsets (grouped, sorted, or the
+    /// nearest within the cutoff).
+    bool with_offsets() const { return grouped || sorted || max_neighbors != 0; }
 };
 
 /// What the visitor of for_each_pair() receives. `vector` is D = x_j - x_i + H shift.

@@ -84,6 +84,9 @@ void to_options(const tricell_neighbor_options& options, std::size_t atoms, Neig
             out.species_cutoffs.push_back(SpeciesCutoff{table[k].a, table[k].b, table[k].cutoff});
         }
     }
+    out.max_neighbors = options.max_neighbors;
+    out.tie_tolerance = options.tie_tolerance;
+    out.symmetric = require_flag(options.symmetric, "options.symmetric");
     out.query.reset();
     if (options.query != nullptr) {
         out.query.emplace(options.query, options.query + options.query_count);
@@ -112,6 +115,9 @@ tricell_neighbor_options to_c_options(const NeighborOptions& options) {
     out.species_cutoff_count = 0;
     out.query = nullptr;
     out.query_count = 0;
+    out.max_neighbors = options.max_neighbors;
+    out.tie_tolerance = options.tie_tolerance;
+    out.symmetric = options.symmetric ? 1 : 0;
     return out;
 }
 

@@ -21,6 +21,11 @@ void DistributedSearch::build(const Decomposition& decomposition, const Box& box
             check.radii = {0.0}; // nothing to check but the rule itself
         }
         check.validate();
+        if (options.max_neighbors != 0) {
+            tricell::detail::fail<InvalidArgument>(
+                "the distributed search keeps every pair within the cutoff: max_neighbors is "
+                "for NeighborSearch");
+        }
         atoms.validate();
     });
     options_ = options;

@@ -50,10 +50,19 @@ ListMemory list_memory(const NeighborOptions& options) {
             m.widest = std::max(m.widest, bytes);
         }
     };
-    add(q.shifts || options.sorted, "S", 12);
-    add(q.distances, "d", 8);
+    const bool nearest = options.max_neighbors != 0;
+    add(q.shifts || options.sorted || nearest, "S", 12);
+    add(q.distances || nearest, "d", 8);
     add(q.vectors, "D", 24);
-    if (options.sorted) {
+    if (nearest) {
+        // Grouping first (the widest column), then the selection: each pair's place in its
+        // block (4), the output order (8 a kept pair, at most every pair), with the symmetric
+        // rule the reverses gained (8 at most a pair), and one column being gathered; per atom
+        // the offsets, the grouping's cursor, then each centre's cut (40) and counts (24).
+        m.order_per_pair = 4 + 8 + (options.symmetric ? 8 : 0) + m.widest;
+        m.per_atom = 8 + 40 + 24;
+        m.order = "select";
+    } else if (options.sorted) {
         m.order_per_pair = 8 + m.widest; // the permutation, one column being permuted
         m.per_atom = 16;                 // the offsets, a cursor
         m.order = "sort";

@@ -4,6 +4,8 @@
 // the list, a column that grows (a list past its estimate) holds its old and its new copy for
 // the time of the copy; grouping scatters one column at a time (the widest one extra); sorting
 // holds an 8-byte permutation and one column extra; both write 8-byte offsets and cursors per atom.
+// Keeping the nearest within the cutoff (max_neighbors) groups, then holds each pair's place in
+// its block, the output order and one column extra, and per atom each centre's cut and counts.
 // The peak of a list is its columns plus the working space of its order. NeighborOptions::max_bytes
 // bounds that peak, NeighborOptions::max_pairs the pairs: ListLimits turns both into pair
 // counts for the stores, and refuses an estimate or a list past either with a PairLimitError
@@ -24,7 +26,7 @@ struct ListMemory {
     double order_per_pair = 0; ///< grouping's or sorting's working space
     double per_atom = 0;       ///< offsets and cursors (grouped or sorted)
     std::string columns;       ///< "i, j, S, d"
-    const char* order = "";    ///< "sort", "group" or "" (unordered)
+    const char* order = "";    ///< "sort", "group", "select" or "" (unordered)
 
     /// The list at its peak: columns and the order's working space.
     double peak(double pairs, std::size_t atoms) const;

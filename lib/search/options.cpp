@@ -73,6 +73,30 @@ void NeighborOptions::validate() const {
     if (leaf_size > (std::size_t(1) << 20)) {
         detail::fail<InvalidArgument>("leaf_size must be at most 2^20 (got ", leaf_size, ")");
     }
+    if (!(std::isfinite(tie_tolerance) && tie_tolerance >= 0)) {
+        detail::fail<InvalidArgument>("tie_tolerance must be finite and >= 0 (got ", tie_tolerance,
+                                      ")");
+    }
+    if (max_neighbors == 0 && (tie_tolerance != 0 || symmetric)) {
+        detail::fail<InvalidArgument>(symmetric ? "symmetric" : "tie_tolerance",
+                                      " applies to the nearest pairs kept: set max_neighbors too");
+    }
+    if (max_neighbors != 0) {
+        if (half) {
+            detail::fail<InvalidArgument>("max_neighbors keeps the nearest pairs of each centre "
+                                          "of a full list: half must be false");
+        }
+        if (sorted) {
+            detail::fail<InvalidArgument>(
+                "max_neighbors orders each centre's pairs by distance (d, j, S): sorted (by j, "
+                "S) cannot be asked with it");
+        }
+        if (symmetric && query) {
+            detail::fail<InvalidArgument>(
+                "symmetric needs every atom's pairs (the other end of a kept pair decides): "
+                "query cannot be asked with it");
+        }
+    }
     if (detail::find_backend(backend) == nullptr) {
         detail::fail<InvalidArgument>("backend must be one of ", backend_choices(),
                                       " (got the value ", static_cast<int>(backend), ")");

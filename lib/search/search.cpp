@@ -12,7 +12,8 @@
 //                                 stores the hits (on several threads in batches written in unit
 //                                 order, output/unit_ordered_batches.hpp)
 //            frame/               map S back to the caller's lattice vectors
-//            output/              group or sort when asked (output/grouped_and_sorted.cpp)
+//            output/              group or sort when asked (output/grouped_and_sorted.cpp), keep
+//                                 the nearest within the cutoff (output/nearest_within.cpp)
 #include "tricell/neighbor_list.hpp"
 
 #include <algorithm>
@@ -21,6 +22,7 @@
 #include "detail/parallel.hpp"
 #include "frame/wrap.hpp"
 #include "output/grouped_and_sorted.hpp"
+#include "output/nearest_within.hpp"
 #include "output/unit_ordered_batches.hpp"
 #include "policy/cost_model.hpp"
 #include "policy/list_limits.hpp"
@@ -110,9 +112,11 @@ void NeighborSearch::compute(NeighborList& out) const {
         return;
     }
     const Quantities& q = s.options.quantities;
-    const bool keep_shifts = q.shifts || s.options.sorted; // sorting needs S
+    const bool nearest = s.options.max_neighbors != 0;
+    const bool keep_shifts = q.shifts || s.options.sorted || nearest; // sorting and ranking need S
+    const bool keep_distances = q.distances || nearest;               // ranking needs d
     const auto columns_of = [&](PairColumns& c) {
-        return detail::stored_columns(c, keep_shifts, q.distances, q.vectors);
+        return detail::stored_columns(c, keep_shifts, keep_distances, q.vectors);
     };
     const detail::ListLimits limits(s.options, s.atom_count);
     detail::ComputeInput input;
@@ -147,11 +151,18 @@ void NeighborSearch::compute(NeighborList& out) const {
         }
         if (s.options.sorted) {
             detail::sort_pairs(columns, s.atom_count);
-        } else if (s.options.grouped) {
+        } else if (s.options.grouped || nearest) {
             detail::group_pairs(columns, s.atom_count, detail::ListAccess::order_scratch(out));
+        }
+        if (nearest) {
+            detail::keep_nearest_within(columns, s.atom_count, s.options, plan.threads,
+                                        detail::ListAccess::order_scratch(out));
         }
         if (!q.shifts) {
             columns.shifts.clear();
+        }
+        if (!q.distances) {
+            columns.distances.clear();
         }
     } catch (...) {
         out.clear();
@@ -166,6 +177,11 @@ void NeighborSearch::for_each_block(void (*on_block)(void*, const PairBlock&),
             "NeighborSearch::for_each_pair() needs a successful build() first");
     }
     const detail::SearchState& s = *state_;
+    if (s.options.max_neighbors != 0) {
+        detail::fail<InvalidArgument>(
+            "NeighborSearch::for_each_pair() visits the whole list: max_neighbors (the nearest "
+            "pairs of each centre) needs compute()");
+    }
     if (!s.backend) {
         return;
     }

@@ -80,6 +80,10 @@ struct Columns {
 VerifyReport check(const Box& box, PointsView x, const NeighborOptions& options,
                    const Columns& list) {
     options.validate();
+    if (options.max_neighbors != 0) {
+        detail::fail<InvalidArgument>("verify() checks a whole list within the cutoff: "
+                                      "max_neighbors cannot be asked of it");
+    }
     detail::check_positions(x, 1);
     const std::size_t n = x.size();
     if (!options.radii.empty() && options.radii.size() != n) {

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
@@ -64,6 +65,25 @@ PYBIND11_MODULE(_tricell, m) {
           "TypeError or ValueError naming name: rule \"points\" (N x 3 float64), \"box\" "
           "(3 x 3 float64), \"real\" (float64, any shape), \"species\" (1-D int32) or "
           "\"periodic\" (3 bools). For the drop-ins, which name their own arguments.");
+    m.def(
+        "_completed_box",
+        [](const py::handle& box, const py::handle& periodic) {
+            const Eigen::Matrix3d rows =
+                tricell::python::box_from_rows(box, periodic).matrix().transpose();
+            py::array_t<double> out({3, 3});
+            for (int r = 0; r < 3; ++r) {
+                for (int c = 0; c < 3; ++c) {
+                    out.mutable_at(r, c) = rows(r, c);
+                }
+            }
+            return out;
+        },
+        py::arg("box"), py::arg("periodic"),
+        "The box the library searches in, rows as lattice vectors: box with the vectors of open "
+        "axes completed where they cannot serve (a zero one, or open vectors that do not span "
+        "with the others, by unit vectors orthogonal to the others). For the drop-ins, which hand "
+        "the box to ASE's own "
+        "geometry.");
     tricell::python::bind_neighbors(m);
     tricell::python::bind_displacement(m);
     tricell::python::bind_read(m);

@@ -23,18 +23,19 @@ numbers (numbers=) change, and otherwise only when the rule says so: a changed c
 by itself force a rebuild (it shrinks the budget by eps * max(r)), and wrapping atoms into the
 cell or moving them by a lattice vector does not count as motion.
 
-Other differences: a cell with zero rows along open axes is completed, as ASE's NeighborList
-completes it before calling a primitive class (ASE's NewPrimitiveNeighborList given the zero
-rows itself misses pairs); each pair appears once in an atom's list (ASE's PrimitiveNeighborList
-repeats the self pair with bothways=True, and pairs with a higher index with sorted=True and
-bothways=True); sorted=True orders every atom's neighbours by index, then offset;
-nneighbors and npbcneighbors count the pairs of the half list (and those with a nonzero
-offset) for both primitive classes, where ASE's NewPrimitiveNeighborList leaves them 0.
+Other differences: a cell with zero rows along open axes is completed by the library's rule
+(the library's Box, docs/contract.md), as ASE's NeighborList completes it before calling a
+primitive class (ASE's NewPrimitiveNeighborList given the zero rows itself misses pairs); each
+pair appears once in an atom's list (ASE's PrimitiveNeighborList repeats the self pair with
+bothways=True, and pairs with a higher index with sorted=True and bothways=True); sorted=True
+orders every atom's neighbours by index, then offset; nneighbors and npbcneighbors count the
+pairs of the half list (and those with a nonzero offset) for both primitive classes, where ASE's
+NewPrimitiveNeighborList leaves them 0.
 """
 import numpy as np
 
 from ._ase_functions import primitive_neighbor_list
-from ._tricell import DisplacementTracker
+from ._tricell import DisplacementTracker, _completed_box
 
 __all__ = ["NeighborList", "PrimitiveNeighborList", "NewPrimitiveNeighborList"]
 
@@ -94,8 +95,6 @@ class _CandidateList:
 
     def _geometry(self, pbc, cell, positions):
         """(pbc as 3 bools, the completed cell, Cartesian positions), checked."""
-        from ase.geometry import complete_cell
-
         pbc_array = np.asarray(pbc, dtype=bool)
         if pbc_array.shape not in ((), (3,)):
             raise ValueError("pbc must be one bool or three (got shape {})"
@@ -105,7 +104,7 @@ class _CandidateList:
         if cell_array.shape != (3, 3):
             raise ValueError("cell must be 3 x 3, lattice vectors as rows (got shape {})"
                              .format(cell_array.shape))
-        cell_array = complete_cell(cell_array)
+        cell_array = _completed_box(cell_array, pbc_array)
         coordinates = np.asarray(positions, dtype=float)
         if coordinates.ndim != 2 or coordinates.shape[1] != 3:
             raise ValueError("positions must be N x 3 (got shape {})".format(coordinates.shape))
@@ -299,10 +298,12 @@ class NeighborList:
                             bothways=bothways)
 
     def update(self, atoms):
-        """Makes sure the list is up to date for the ase.Atoms `atoms` (its pbc, completed
-        cell, positions and atomic numbers); returns True when it rebuilt."""
+        """Makes sure the list is up to date for the ase.Atoms `atoms` (its pbc, cell,
+        positions and atomic numbers); returns True when it rebuilt. tricell's primitive
+        classes complete the cell themselves; another primitive class gets ASE's completed
+        cell, as from ASE's NeighborList."""
         if isinstance(self.nl, _CandidateList):
-            return self.nl.update(atoms.pbc, atoms.get_cell(complete=True), atoms.positions,
+            return self.nl.update(atoms.pbc, atoms.cell.array, atoms.positions,
                                   numbers=atoms.numbers)
         return self.nl.update(atoms.pbc, atoms.get_cell(complete=True), atoms.positions)
 

@@ -70,8 +70,8 @@ def primitive_neighbor_list(quantities, pbc, cell, positions, cutoff, numbers=No
     """ase.neighborlist.primitive_neighbor_list, computed by tricell (see tricell.ase's doc).
 
     pbc: three bools; cell: 3 x 3, lattice vectors as rows (zero rows of open axes are
-    completed as ASE completes them); positions: N x 3 Cartesian, or fractional with
-    use_scaled_positions; numbers: atomic numbers, needed with a dict cutoff."""
+    completed by the library's rule, as ASE completes them); positions: N x 3 Cartesian, or
+    fractional with use_scaled_positions; numbers: atomic numbers, needed with a dict cutoff."""
     for q in quantities:
         if q not in _EMPTY:
             raise ValueError("Unsupported quantity specified.")
@@ -90,8 +90,6 @@ def primitive_neighbor_list(quantities, pbc, cell, positions, cutoff, numbers=No
                              f"(got shape {numbers.shape})")
     if len(positions) == 0:
         return _empty(quantities)
-    from ase.geometry import complete_cell
-
     if use_scaled_positions:
         positions = positions @ cell
 
@@ -119,7 +117,7 @@ def primitive_neighbor_list(quantities, pbc, cell, positions, cutoff, numbers=No
         extra = {"radii": cutoff}
         has_self = cutoff > 0
     # Views of the list's buffers (copy=False): each column is copied once, into ASE's dtype.
-    found = search.compute(positions, complete_cell(cell), pbc, needed, copy=False, **extra)
+    found = search.compute(positions, cell, pbc, needed, copy=False, **extra)
     columns = dict(zip(needed, found))
     if self_interaction:
         return _result(quantities, _with_self_pairs(columns, columns.pop("o"), has_self))
@@ -147,7 +145,7 @@ def _with_self_pairs(columns, offsets, has_self):
 def neighbor_list(quantities, a, cutoff, self_interaction=False, max_nbins=1e6):
     """ase.neighborlist.neighbor_list, computed by tricell: the neighbours of the ase.Atoms
     `a` (its pbc, cell and positions; its atomic numbers for a dict cutoff)."""
-    return primitive_neighbor_list(quantities, a.pbc, a.get_cell(complete=True), a.positions,
+    return primitive_neighbor_list(quantities, a.pbc, a.cell.array, a.positions,
                                    cutoff, numbers=a.numbers, self_interaction=self_interaction,
                                    max_nbins=max_nbins)
 

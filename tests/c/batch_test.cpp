@@ -60,6 +60,67 @@ Batch random_batch(std::uint64_t seed) {
 
 } // namespace
 
+// Global indices through the C API: the positions of every structure concatenated into one
+// array, each structure's pointer into it; the arrays equal the C++ call's with
+// BatchIndices::global bit for bit, and i, j are the local ones plus the structure's first row.
+TEST(CApiBatch, GlobalIndicesAreRowsOfTheConcatenatedPositions) {
+    auto global = make_batch();
+    auto local = make_batch();
+    for (std::uint64_t seed = 0; seed < batch_count / 3; ++seed) {
+        SCOPED_TRACE(seed);
+        Batch b = random_batch(seed);
+        std::vector<double> all;
+        for (const RandomSystem& sys : b.systems) {
+            for (const Eigen::Vector3d& x : sys.positions) {
+                all.insert(all.end(), {x.x(), x.y(), x.z()});
+            }
+        }
+        std::size_t first = 0;
+        for (tricell_structure& c : b.c) {
+            c.positions = c.n == 0 ? nullptr : all.data() + 3 * first;
+            first += c.n;
+        }
+        tricell_neighbor_options o;
+        ASSERT_EQ(tricell_neighbor_options_init(&o), TRICELL_OK);
+        o.cutoff = b.systems.empty() ? 1.0 : b.systems.front().cutoff;
+        o.half = int(seed % 2);
+        o.threads = int(seed % 3);
+        ASSERT_EQ(tricell_neighbors_batch_indexed(b.c.data(), b.c.size(), &o, TRICELL_BATCH_GLOBAL,
+                                                  global.get()),
+                  TRICELL_OK)
+            << tricell_last_error();
+        ASSERT_EQ(tricell_neighbors_batch_indexed(b.c.data(), b.c.size(), &o, TRICELL_BATCH_LOCAL,
+                                                  local.get()),
+                  TRICELL_OK);
+        tricell_batch_pairs g, l;
+        ASSERT_EQ(tricell_batch_list_pairs(global.get(), &g), TRICELL_OK);
+        ASSERT_EQ(tricell_batch_list_pairs(local.get(), &l), TRICELL_OK);
+        tricell::NeighborOptions cxx_options;
+        cxx_options.cutoff = o.cutoff;
+        cxx_options.half = o.half == 1;
+        tricell::BatchList cxx;
+        tricell::compute_neighbors_batch(b.cxx, cxx_options, cxx, tricell::BatchIndices::global);
+        ASSERT_EQ(g.pairs.size, cxx.size());
+        expect_same_array(cxx.i(), g.pairs.i, g.pairs.size);
+        expect_same_array(cxx.j(), g.pairs.j, g.pairs.size);
+        expect_same_array(cxx.distances(), g.pairs.distances, g.pairs.size);
+        for (std::size_t s = 0; s < g.structures; ++s) {
+            for (std::size_t k = g.pair_offsets[s]; k < g.pair_offsets[s + 1]; ++k) {
+                ASSERT_EQ(g.pairs.i[k], l.pairs.i[k] + g.atom_offsets[s]);
+                ASSERT_EQ(g.pairs.j[k], l.pairs.j[k] + g.atom_offsets[s]);
+                ASSERT_LT(g.pairs.j[k], g.atom_offsets[s + 1]);
+            }
+        }
+    }
+    tricell_neighbor_options o;
+    ASSERT_EQ(tricell_neighbor_options_init(&o), TRICELL_OK);
+    o.cutoff = 1;
+    EXPECT_STATUS(tricell_neighbors_batch_indexed(nullptr, 0, &o, 2, global.get()),
+                  TRICELL_ERROR_INVALID_ARGUMENT,
+                  "tricell_neighbors_batch_indexed: indices must be TRICELL_BATCH_LOCAL (0) or "
+                  "TRICELL_BATCH_GLOBAL (1) (got 2)");
+}
+
 TEST(CApiBatch, MatchesCxxBitForBitAndBruteForce) {
     auto list = make_batch();
     std::size_t pairs_seen = 0, structures_seen = 0;
@@ -251,7 +312,8 @@ TEST(CApiBatch, EveryValidationBranch) {
     expect_empty();
     c = b.c;
     for (int k = 0; k < 3; ++k) {
-        c[1].box.vectors[1][k] = c[1].box.vectors[0][k]; // a == b: singular
+        c[1].box.vectors[1][k] = c[1].box.vectors[0][k]; // a == b, both periodic: singular
+        c[1].box.periodic[k] = 1;
     }
     std::string singular;
     try {

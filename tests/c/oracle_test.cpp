@@ -104,6 +104,107 @@ TEST(CApiOracle, Neighbors_MatchCxxAndBruteForce) {
     EXPECT_GT(pairs_seen, 1000u); // the cases are not all trivially empty
 }
 
+// Molecules, slabs and wires with zero vectors along their open axes, given by hand in a
+// tricell_box, through tricell_box_from_rows and in a batch: the brute-force pairs.
+TEST(CApiOracle, ZeroVectorsOfOpenAxes_MatchBruteForce) {
+    auto search = make_search();
+    auto list = make_list();
+    tricell_batch_list* batch = nullptr;
+    ASSERT_EQ(tricell_batch_list_create(&batch), TRICELL_OK);
+    std::size_t pairs_seen = 0;
+    for (std::uint64_t seed = 0; seed < case_count / 4; ++seed) {
+        SCOPED_TRACE(seed);
+        RandomSystem sys = random_system(seed);
+        sys.pbc.axes = {{false, false, false}};
+        for (std::size_t k = 0; k < seed % 3; ++k) { // a molecule, a wire or a slab
+            sys.pbc.axes[(seed / 3 + k) % 3] = true;
+        }
+        tricell_box box;
+        double rows[9];
+        for (int k = 0; k < 3; ++k) {
+            box.periodic[k] = sys.pbc[k] ? 1 : 0;
+            for (int c = 0; c < 3; ++c) {
+                box.vectors[k][c] = sys.pbc[k] ? sys.h(c, k) : 0.0;
+                rows[3 * k + c] = box.vectors[k][c];
+            }
+        }
+        tricell_box from_rows;
+        ASSERT_EQ(tricell_box_from_rows(rows, box.periodic, &from_rows), TRICELL_OK)
+            << tricell_last_error();
+        tricell_neighbor_options o;
+        ASSERT_EQ(tricell_neighbor_options_init(&o), TRICELL_OK);
+        o.cutoff = sys.cutoff;
+        o.half = int(seed / 3 % 2);
+        o.vectors = 1;
+        PairMap expected = brute_force_pairs(sys.box(), sys.positions, sys.cutoff);
+        if (o.half == 1) {
+            expected = canonical_half(expected);
+        }
+        for (const tricell_box* b : {&box, &from_rows}) {
+            ASSERT_EQ(tricell_neighbors(search.get(), b, xyz(sys.positions), sys.positions.size(),
+                                        &o, list.get()),
+                      TRICELL_OK)
+                << tricell_last_error();
+            tricell_pairs pairs;
+            ASSERT_EQ(tricell_neighbor_list_pairs(list.get(), &pairs), TRICELL_OK);
+            expect_same_pairs(expected, to_map(pairs), sys.cutoff, tolerance(sys));
+            pairs_seen += pairs.size;
+        }
+        const tricell_structure one{box, xyz(sys.positions), sys.positions.size()};
+        ASSERT_EQ(tricell_neighbors_batch(&one, 1, &o, batch), TRICELL_OK) << tricell_last_error();
+        tricell_batch_pairs in_batch;
+        ASSERT_EQ(tricell_batch_list_pairs(batch, &in_batch), TRICELL_OK);
+        expect_same_pairs(expected, to_map(in_batch.pairs), sys.cutoff, tolerance(sys));
+    }
+    tricell_batch_list_destroy(batch);
+    EXPECT_GT(pairs_seen, 1000u);
+}
+
+// The k nearest within the cutoff through the C options: the C++ list, bit for bit.
+TEST(CApiOracle, NearestWithin_MatchesCxx) {
+    auto search = make_search();
+    auto list = make_list();
+    for (std::uint64_t seed = 0; seed < case_count / 4; ++seed) {
+        SCOPED_TRACE(seed);
+        const RandomSystem sys = random_system(seed);
+        tricell_neighbor_options o;
+        ASSERT_EQ(tricell_neighbor_options_init(&o), TRICELL_OK);
+        EXPECT_EQ(o.max_neighbors, 0u);
+        EXPECT_EQ(o.tie_tolerance, 0.0);
+        EXPECT_EQ(o.symmetric, 0);
+        o.cutoff = sys.cutoff;
+        o.max_neighbors = 1 + seed % 7;
+        o.tie_tolerance = seed % 3 == 0 ? 0.1 : 0.0;
+        o.symmetric = int(seed % 2);
+        o.vectors = 1;
+        const tricell_box box = c_box(sys);
+        ASSERT_EQ(tricell_neighbors(search.get(), &box, xyz(sys.positions), sys.positions.size(),
+                                    &o, list.get()),
+                  TRICELL_OK)
+            << tricell_last_error();
+        tricell_pairs pairs;
+        ASSERT_EQ(tricell_neighbor_list_pairs(list.get(), &pairs), TRICELL_OK);
+        tricell::NeighborOptions cxx_options;
+        cxx_options.cutoff = sys.cutoff;
+        cxx_options.max_neighbors = o.max_neighbors;
+        cxx_options.tie_tolerance = o.tie_tolerance;
+        cxx_options.symmetric = o.symmetric == 1;
+        cxx_options.quantities.vectors = true;
+        expect_same_list(tricell::compute_neighbors(sys.box(), sys.positions, cxx_options), pairs,
+                         cxx_options.quantities, true);
+    }
+    tricell_neighbor_options o;
+    ASSERT_EQ(tricell_neighbor_options_init(&o), TRICELL_OK);
+    o.cutoff = 1;
+    o.max_neighbors = 2;
+    o.symmetric = 2;
+    const RandomSystem sys = random_system(1);
+    const tricell_box box = c_box(sys);
+    EXPECT_STATUS(tricell_neighbors(search.get(), &box, xyz(sys.positions), sys.positions.size(),
+                                    &o, list.get()),
+                  TRICELL_ERROR_INVALID_ARGUMENT, "options.symmetric must be 0 or 1 (got 2)");
+}
+
 TEST(CApiOracle, Neighbors_QuantitiesSubsetsAndStablePointers) {
     const RandomSystem sys = random_system(3);
     const tricell_box box = c_box(sys);

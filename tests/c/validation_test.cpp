@@ -112,7 +112,7 @@ TEST(CApiValidation, Box_GeometryMessagesAreTheCxxOnes) {
          TRICELL_ERROR_INVALID_ARGUMENT}, // non-finite
         {{4, 0, 0, 0, 4, 0, 0, 0, infinity}, {1, 1, 0}, TRICELL_ERROR_INVALID_ARGUMENT},
         {{4, 0, 0, 8, 0, 0, 0, 0, 4}, {1, 1, 1}, TRICELL_ERROR_GEOMETRY},     // singular
-        {{4, 0, 0, 0, 4, 0, 4, 4, 1e-11}, {1, 1, 0}, TRICELL_ERROR_GEOMETRY}, // flat
+        {{4, 0, 0, 0, 4, 0, 4, 4, 1e-11}, {1, 1, 1}, TRICELL_ERROR_GEOMETRY}, // flat
         {{0, 0, 0, 0, 4, 0, 0, 0, 4}, {1, 1, 1}, TRICELL_ERROR_GEOMETRY},     // zero vector
     };
     for (const Case& c : cases) {

@@ -41,6 +41,7 @@ program neighbors_test
         call random_case(seed)
     end do
     call verlet_trajectories(max(cases / 10, 5))
+    call nearest_in_a_molecule()
     call error_paths()
     if (total_pairs < 1000 .or. beyond_box == 0 .or. partial == 0) then
         print '(a)', 'the random cases are too easy'
@@ -166,6 +167,32 @@ contains
             print '(a, i0, a, i0, a)', 'seed ', seed, ': ', problems, ' problems'
             failures = failures + 1
         end if
+        call list%destroy()
+    end subroutine
+
+    !> Three atoms on a line in a box of zeros (a molecule needs no cell): the nearest neighbour
+    !> of each (max_neighbors=1), then with the symmetric rule (atom 1 gains atom 2).
+    subroutine nearest_in_a_molecule()
+        type(tricell_neighbor_list) :: list
+        real(c_double) :: x(3, 3), box(3, 3)
+        integer :: status
+
+        x = reshape([0d0, 0d0, 0d0, 1d0, 0d0, 0d0, 2.5d0, 0d0, 0d0], [3, 3])
+        box = 0
+        list = tricell_neighbor_list(10d0, max_neighbors=1)
+        call list%compute(x, box, [.false., .false., .false.], status)
+        call expect(status == TRICELL_OK, 'a molecule with a zero box')
+        if (status /= TRICELL_OK) return
+        call expect(list%npairs == 3, 'one neighbour each')
+        call expect(all(list%j == [1, 0, 1]), 'the nearest of each')
+        call expect(all(list%offsets == [0, 1, 2, 3]), 'offsets of the nearest')
+        call list%destroy()
+        list = tricell_neighbor_list(10d0, max_neighbors=1, symmetric=.true.)
+        call list%compute(x, box, [.false., .false., .false.], status)
+        call expect(status == TRICELL_OK .and. list%npairs == 4, 'the symmetric rule adds 1-2')
+        if (status /= TRICELL_OK) return
+        call expect(all(list%j == [1, 0, 2, 1]), 'atom 1: 0 at 1, then 2 at 1.5')
+        call expect(all(list%offsets == [0, 1, 3, 4]), 'offsets of the symmetric nearest')
         call list%destroy()
     end subroutine
 

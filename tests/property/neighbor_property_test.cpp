@@ -154,6 +154,60 @@ TEST_P(NeighborProperty, FullListEqualsBruteForce_RandomCases) {
     }
 }
 
+// Molecules, slabs and wires as data sets give them: the vectors of open axes zero (ASE's Atoms
+// without a cell), or parallel to a periodic one. The pairs are the brute-force ones of the
+// same positions in the system's own box (any open vectors give the same pairs), full and half.
+TEST_P(NeighborProperty, ZeroVectorsOfOpenAxesGiveTheBruteForcePairs_RandomCases) {
+    for (std::uint64_t seed = 0; seed < case_count; ++seed) {
+        RandomSystem sys = tricell::testing::random_system(seed);
+        if (skip(sys)) {
+            continue;
+        }
+        std::mt19937_64 rng(seed * 31 + 7);
+        if (sys.pbc.count() == 3) { // a molecule, a slab or a wire
+            sys.pbc.axes = {{false, false, false}};
+            for (std::size_t k = 0, periodic = rng() % 3; k < periodic; ++k) {
+                sys.pbc.axes[(seed + k) % 3] = true;
+            }
+        }
+        Eigen::Matrix3d given = sys.h;
+        for (int k = 0; k < 3; ++k) {
+            if (!sys.pbc[k]) {
+                // Zero mostly; sometimes along a periodic vector (or the first one).
+                const int other = sys.pbc[(k + 1) % 3] ? (k + 1) % 3 : (k + 2) % 3;
+                given.col(k) = rng() % 4 == 0 ? Eigen::Vector3d(2.5 * sys.h.col(other))
+                                              : Eigen::Vector3d::Zero();
+            }
+        }
+        SCOPED_TRACE(testing::Message()
+                     << "seed " << seed << " (" << sys.kind << "), N " << sys.positions.size()
+                     << ", periodic " << sys.pbc.axes[0] << sys.pbc.axes[1] << sys.pbc.axes[2]);
+        const PairMap expected =
+            tricell::testing::brute_force_pairs(sys.box(), sys.positions, sys.cutoff);
+        NeighborOptions o = options(seed, sys.cutoff);
+        const Box box = Box::from_columns(given, sys.pbc);
+        o.half = false;
+        const PairMap full =
+            tricell::testing::to_map(tricell::compute_neighbors(box, sys.positions, o));
+        expect_same_pairs(expected, full, sys.cutoff, tolerance(sys), "full vs oracle");
+        o.half = true;
+        const PairMap half =
+            tricell::testing::to_map(tricell::compute_neighbors(box, sys.positions, o));
+        expect_same_pairs(tricell::testing::canonical_half(expected), half, sys.cutoff,
+                          tolerance(sys), "half vs oracle");
+        for (const auto& [key, value] : full) {
+            const auto& [i, j, a, b, c] = key;
+            const int shift[3] = {a, b, c};
+            for (int k = 0; k < 3; ++k) {
+                ASSERT_TRUE(sys.pbc[k] || shift[k] == 0) << "a shift along open axis " << k;
+            }
+        }
+        if (::testing::Test::HasFailure()) {
+            return;
+        }
+    }
+}
+
 TEST_P(NeighborProperty, HalfListEqualsCanonicalFull_RandomCases) {
     for (std::uint64_t seed = 0; seed < case_count; ++seed) {
         const RandomSystem sys = tricell::testing::random_system(seed);

@@ -287,3 +287,77 @@ TEST(Batch, MaxPairsBoundsTheWholeBatch) {
         EXPECT_EQ(batch.size(), 0u);
     }
 }
+
+// Concatenated positions (one N_total x 3 array, as machine-learning codes pass a batch): each
+// structure a view into it, global indices asked for. Every structure's slice is its own list
+// with i and j moved by its first atom's index, indices into the one array; structures
+// overlapping in space (the same coordinates twice) and empty ones never share a pair.
+TEST(Batch, GlobalIndicesNumberTheConcatenatedPositions_RandomBatches) {
+    BatchList local, global;
+    for (int c = 0; c < batch_cases / 2; ++c) {
+        const std::uint64_t seed = 9400 + std::uint64_t(c);
+        SCOPED_TRACE(seed);
+        RandomBatch input = random_batch(seed);
+        if (!input.boxes.empty()) { // a copy of a structure at the same place, and an empty one
+            input.boxes.push_back(input.boxes.front());
+            input.positions.push_back(input.positions.front());
+            input.boxes.insert(input.boxes.begin() + 1, input.boxes.back());
+            input.positions.insert(input.positions.begin() + 1, std::vector<Eigen::Vector3d>());
+        }
+        std::vector<Eigen::Vector3d> all;
+        std::vector<std::size_t> first{0};
+        for (const auto& x : input.positions) {
+            all.insert(all.end(), x.begin(), x.end());
+            first.push_back(all.size());
+        }
+        std::vector<BatchStructure> views;
+        for (std::size_t s = 0; s < input.boxes.size(); ++s) {
+            views.push_back(BatchStructure{
+                input.boxes[s], tricell::PointsView(all.empty() ? nullptr : all[first[s]].data(),
+                                                    first[s + 1] - first[s])});
+        }
+        NeighborOptions options;
+        options.cutoff = input.cutoff;
+        options.half = c % 2 == 1;
+        options.sorted = c % 3 == 0;
+        options.quantities.vectors = true;
+        options.threads = 1 + c % 3;
+        tricell::compute_neighbors_batch(views, options, local);
+        tricell::compute_neighbors_batch(views, options, global, tricell::BatchIndices::global);
+        EXPECT_EQ(local.indices(), tricell::BatchIndices::local);
+        ASSERT_EQ(global.indices(), tricell::BatchIndices::global);
+        ASSERT_EQ(global.pair_offsets(), local.pair_offsets());
+        ASSERT_EQ(global.atom_offsets(), first);
+        EXPECT_EQ(global.offsets(), local.offsets());
+        EXPECT_TRUE(global.shifts() == local.shifts());
+        EXPECT_TRUE(global.distances() == local.distances());
+        EXPECT_TRUE(global.vectors() == local.vectors());
+        for (std::size_t s = 0; s < views.size(); ++s) {
+            for (std::size_t k = global.pair_offsets()[s]; k < global.pair_offsets()[s + 1]; ++k) {
+                ASSERT_EQ(global.i()[k], local.i()[k] + first[s]);
+                ASSERT_EQ(global.j()[k], local.j()[k] + first[s]);
+                ASSERT_LT(global.j()[k], first[s + 1]) << "a pair joining two structures";
+                // D from the one array: x_j - x_i + H S.
+                const Eigen::Vector3d d =
+                    all[global.j()[k]] - all[global.i()[k]] +
+                    input.boxes[s].matrix() * global.columns().shift(k).cast<double>();
+                const Eigen::Vector3d listed = global.columns().vector(k);
+                ASSERT_NEAR((d - listed).norm(), 0.0, 1e-9 * (1 + d.norm()));
+            }
+        }
+    }
+}
+
+TEST(Batch, GlobalIndicesRefuseMoreAtomsThanFitThem) {
+    // 70000 views of the same 65536 points: 4.6e9 atoms, refused before any is read.
+    const std::vector<Eigen::Vector3d> points(65536, Eigen::Vector3d::Zero());
+    const Box cube = Box::from_parameters(4, 4, 4, 90, 90, 90);
+    const std::vector<BatchStructure> views(70000, BatchStructure{cube, points});
+    NeighborOptions options;
+    options.cutoff = 1;
+    BatchList batch;
+    EXPECT_THROW_MSG(
+        tricell::compute_neighbors_batch(views, options, batch, tricell::BatchIndices::global),
+        tricell::InvalidArgument,
+        "global indices number at most 4294967295 atoms, but the batch has 4587520000");
+}

@@ -1,3 +1,4 @@
+#include <array>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -373,9 +374,79 @@ TEST(Box, RejectsZeroPeriodicVector) {
     h.col(1).setZero();
     EXPECT_THROW_MSG(Box::from_columns(h), tricell::GeometryError,
                      "lattice vector b is zero but axis b is periodic");
-    // Open along b the frame is still singular: rejected, but not as a periodicity problem.
+}
+
+TEST(Box, RejectsDependentPeriodicVectorsNamingThem) {
+    Eigen::Matrix3d h = triclinic_columns();
+    h.col(2) = 2.5 * h.col(0);
     EXPECT_THROW_MSG(Box::from_columns(h, Periodicity{{true, false, true}}), tricell::GeometryError,
-                     "singular");
+                     "box is singular or nearly flat: the periodic lattice vectors a and c are "
+                     "parallel or nearly so, |a x c| / (|a||c|) = ");
+    // Open along c, the parallel vector only sets the frame: replaced.
+    EXPECT_NO_THROW(Box::from_columns(h, Periodicity{{true, true, false}}));
+    h = triclinic_columns();
+    h.col(2) = h.col(0) - 3 * h.col(1);
+    EXPECT_THROW_MSG(Box::from_columns(h), tricell::GeometryError,
+                     "the periodic lattice vectors a, b and c are coplanar or nearly so");
+}
+
+// Along open axes a zero vector (a molecule's all-zero cell, a slab's zero c) is completed by
+// unit vectors orthogonal to the others, right-handed; given open vectors that span are kept,
+// and open vectors that do not span with the others are all replaced. Periodic vectors never
+// change.
+TEST(Box, CompletesTheVectorsOfOpenAxes) {
+    const Eigen::Matrix3d given = triclinic_columns();
+    const auto expect_completed = [&](const Eigen::Matrix3d& h, const Periodicity& pbc,
+                                      const std::array<bool, 3>& kept) {
+        const Box box = Box::from_columns(h, pbc);
+        const Eigen::Matrix3d& out = box.matrix();
+        EXPECT_GT(box.determinant(), 0.0);
+        for (int k = 0; k < 3; ++k) {
+            if (kept[std::size_t(k)]) {
+                EXPECT_EQ(out.col(k), h.col(k)) << "axis " << k;
+                continue;
+            }
+            EXPECT_NEAR(out.col(k).norm(), 1.0, 1e-15) << "axis " << k;
+            for (int l = 0; l < 3; ++l) {
+                if (l != k && (pbc[l] || !kept[std::size_t(l)])) {
+                    EXPECT_NEAR(out.col(k).dot(out.col(l)), 0.0, 1e-12) << k << " and " << l;
+                }
+            }
+        }
+    };
+    // A molecule: the identity.
+    EXPECT_EQ(Box::from_columns(Eigen::Matrix3d::Zero(), Periodicity::none()).matrix(),
+              Eigen::Matrix3d::Identity());
+    for (int open = 0; open < 3; ++open) {
+        // A slab: the zero vector of its open axis completed.
+        Eigen::Matrix3d slab = given;
+        slab.col(open).setZero();
+        Periodicity pbc = Periodicity::all();
+        pbc.axes[std::size_t(open)] = false;
+        std::array<bool, 3> kept{{true, true, true}};
+        kept[std::size_t(open)] = false;
+        expect_completed(slab, pbc, kept);
+        // A wire along `open`'s axis: two zero vectors, and one vector only along the wire.
+        Eigen::Matrix3d wire = Eigen::Matrix3d::Zero();
+        wire.col(open) = given.col(open);
+        Periodicity line = Periodicity::none();
+        line.axes[std::size_t(open)] = true;
+        std::array<bool, 3> along{{false, false, false}};
+        along[std::size_t(open)] = true;
+        expect_completed(wire, line, along);
+        wire.col(open) = Eigen::Vector3d(0, 4, 0); // the helper direction switches
+        expect_completed(wire, line, along);
+        // An open vector parallel to a periodic one: every open vector replaced.
+        Eigen::Matrix3d parallel = given;
+        parallel.col(open) = 3 * given.col((open + 1) % 3);
+        expect_completed(parallel, pbc, kept);
+        // An open vector that spans is the caller's frame, kept.
+        expect_completed(given, pbc, {{true, true, true}});
+    }
+    // Open axes that span with one zero among them: the zero one completed, the others kept.
+    Eigen::Matrix3d two = given;
+    two.col(1).setZero();
+    expect_completed(two, Periodicity::none(), {{true, false, true}});
 }
 
 TEST(Box, RejectsBadLatticeParameters) {
