@@ -46,7 +46,8 @@ class PyNeighborList {
     // table; compute() then needs species=) or None (compute() then needs radii=).
     PyNeighborList(const py::object& cutoff, bool full, bool sorted, int threads,
                    const std::string& backend, std::size_t max_pairs, bool grouped,
-                   const py::object& max_bytes) {
+                   const py::object& max_bytes, std::size_t max_neighbors, double tie_tolerance,
+                   bool symmetric) {
         set_cutoff(cutoff, options_);
         per_atom_radii_ = cutoff.is_none();
         options_.half = !full;
@@ -56,6 +57,9 @@ class PyNeighborList {
         options_.backend = parse_backend(backend);
         options_.max_pairs = max_pairs;
         options_.max_bytes = max_bytes_argument(max_bytes);
+        options_.max_neighbors = max_neighbors;
+        options_.tie_tolerance = tie_tolerance;
+        options_.symmetric = symmetric;
         if (!per_atom_radii_) {
             options_.validate();
         }
@@ -163,6 +167,9 @@ class PyNeighborList {
     bool full() const { return !options_.half; }
     bool sorted() const { return options_.sorted; }
     bool grouped() const { return options_.grouped; }
+    std::size_t max_neighbors() const { return options_.max_neighbors; }
+    double tie_tolerance() const { return options_.tie_tolerance; }
+    bool symmetric() const { return options_.symmetric; }
     int threads() const { return options_.threads; }
 
   private:
@@ -238,7 +245,7 @@ class PyNeighborList {
     void require_offsets_if_asked(const QuantitySpec& spec) const {
         if (spec.offsets && !options_.with_offsets()) {
             throw py::value_error("quantity 'o' (per-atom offsets) needs a NeighborList made "
-                                  "with grouped=True or sorted=True");
+                                  "with grouped=True or sorted=True, or with max_neighbors");
         }
     }
 
@@ -334,7 +341,7 @@ Periodic neighbour list in a triclinic box.
 
 NeighborList(cutoff, full=True, sorted=False, threads=1, backend="auto", max_pairs=)doc" +
                             std::to_string(default_max_pairs) + R"doc(, grouped=False,
-             max_bytes=None)
+             max_bytes=None, max_neighbors=0, tie_tolerance=0.0, symmetric=False)
 
 Pairs (i, j, S) with |D| < cutoff, D = points[j] - points[i] + S @ box, except (i, i, 0).
 cutoff may also be a dict {(a, b): cutoff} of integer species pairs (symmetric; a pair of
@@ -343,7 +350,12 @@ for per-atom radii (compute() then takes radii=; a pair counts when d < r_i + r_
 full=False keeps each pair once (i < j, or i == j with S lexicographically positive).
 sorted=True orders pairs by i, then j, then S. grouped=True only groups them by i (each atom's
 pairs in the order the search found them, the same for any thread count), in one counting pass;
-both give per-atom offsets (quantity 'o'). threads=0 uses every core; the result is
+both give per-atom offsets (quantity 'o'). max_neighbors=k keeps at most k pairs per centre,
+nearest first (the k nearest within the cutoff, as machine-learning potentials build their
+graphs): each centre's pairs ranked by (d, j, S) and grouped in that order, with offsets; full
+lists only (full=False and sorted=True are refused); 0 keeps every pair. tie_tolerance=t keeps
+every other pair with d <= d_k + t too, d_k the centre's k-th distance; symmetric=True keeps
+(j, i, -S) wherever (i, j, S) is kept, so no edge is kept at one end only. threads=0 uses every core; the result is
 identical for any thread count. backend ()doc" +
                             quoted_backends() + R"doc() changes only the speed.
 max_pairs refuses a list of more pairs (a batch: in total) before it is allocated, from an
@@ -357,11 +369,12 @@ complex, str, object, datetime, ...) raises TypeError, a wrong shape ValueError,
 argument with the dtype and shape it got.)doc";
     py::class_<PyNeighborList>(m, "NeighborList", doc.c_str())
         .def(py::init<const py::object&, bool, bool, int, const std::string&, std::size_t, bool,
-                      const py::object&>(),
+                      const py::object&, std::size_t, double, bool>(),
              py::arg("cutoff"), py::arg("full") = true, py::arg("sorted") = false,
              py::arg("threads") = 1, py::arg("backend") = "auto",
              py::arg("max_pairs") = default_max_pairs, py::arg("grouped") = false,
-             py::arg("max_bytes") = py::none())
+             py::arg("max_bytes") = py::none(), py::arg("max_neighbors") = 0,
+             py::arg("tie_tolerance") = 0.0, py::arg("symmetric") = false)
         .def("compute", &PyNeighborList::compute, py::arg("points"), py::arg("box"),
              py::arg("periodic") = true, py::arg("quantities") = "ijSd", py::arg("copy") = true,
              py::arg("radii") = py::none(), py::arg("species") = py::none(),
@@ -403,6 +416,13 @@ return nothing.)doc")
                                "Pairs ordered by i, then j, then S.")
         .def_property_readonly("grouped", &PyNeighborList::grouped,
                                "Pairs grouped by i, in the search's order within each atom.")
+        .def_property_readonly("max_neighbors", &PyNeighborList::max_neighbors,
+                               "At most this many pairs per centre, nearest first (0: all).")
+        .def_property_readonly("tie_tolerance", &PyNeighborList::tie_tolerance,
+                               "With max_neighbors: also keep pairs within this of the k-th "
+                               "distance.")
+        .def_property_readonly("symmetric", &PyNeighborList::symmetric,
+                               "With max_neighbors: (j, i, -S) kept wherever (i, j, S) is.")
         .def_property_readonly("threads", &PyNeighborList::threads,
                                "Threads of a search (0: every core).");
 
