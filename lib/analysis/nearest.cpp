@@ -11,27 +11,14 @@
 #include <limits>
 
 #include "analysis/half_pairs.hpp"
+#include "detail/pair_rank.hpp"
 #include "tricell/error.hpp"
 
 namespace tricell {
 
 namespace {
 
-struct Candidate {
-    double d;
-    std::uint32_t j;
-    std::int32_t s[3];
-};
-
-bool operator<(const Candidate& l, const Candidate& r) {
-    if (l.d != r.d) {
-        return l.d < r.d;
-    }
-    if (l.j != r.j) {
-        return l.j < r.j;
-    }
-    return std::lexicographical_compare(l.s, l.s + 3, r.s, r.s + 3);
-}
+using Candidate = detail::RankedPair; // detail/pair_rank.hpp: the result's order
 
 // A radius within which about k neighbours are expected, from the search's own density
 // estimate (NeighborSearch::estimated_pairs: N atoms over the region they occupy, the cell

@@ -7,33 +7,15 @@
 #include <numeric>
 #include <vector>
 
+#include "detail/pair_rank.hpp"
 #include "detail/parallel.hpp"
 
 namespace tricell::detail {
 
 namespace {
 
-// A pair's rank within its centre: (d, j, S) lexicographically.
-struct Key {
-    double d;
-    std::uint32_t j;
-    std::int32_t s[3];
-};
-
-bool operator<(const Key& l, const Key& r) {
-    if (l.d != r.d) {
-        return l.d < r.d;
-    }
-    if (l.j != r.j) {
-        return l.j < r.j;
-    }
-    for (int a = 0; a < 3; ++a) {
-        if (l.s[a] != r.s[a]) {
-            return l.s[a] < r.s[a];
-        }
-    }
-    return false;
-}
+// A pair's rank within its centre (detail/pair_rank.hpp).
+using Key = RankedPair;
 
 // What a centre keeps: every pair (a centre of at most k pairs), or those up to its k-th key and,
 // with a tie tolerance, those with d <= limit.
