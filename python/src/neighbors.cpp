@@ -60,6 +60,15 @@ class PyNeighborList {
         options_.max_neighbors = max_neighbors;
         options_.tie_tolerance = tie_tolerance;
         options_.symmetric = symmetric;
+        // The library's own rule, in this constructor's argument names.
+        if (max_neighbors != 0 && !full) {
+            throw py::value_error("max_neighbors keeps the nearest pairs of each centre of a full "
+                                  "list: full must be True (got full=False)");
+        }
+        if (max_neighbors != 0 && sorted) {
+            throw py::value_error("max_neighbors orders each centre's pairs nearest first, by "
+                                  "(d, j, S): sorted=True (by j, S) cannot be asked with it");
+        }
         if (!per_atom_radii_) {
             options_.validate();
         }

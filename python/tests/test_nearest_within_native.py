@@ -78,8 +78,8 @@ def test_the_concatenated_batch_gives_each_system_its_single_call():
 
 
 def test_what_it_cannot_define_is_refused_by_name():
-    with pytest.raises(ValueError, match="max_neighbors keeps the nearest pairs of each centre "
-                                         "of a full list: half must be false"):
+    with pytest.raises(ValueError, match=r"max_neighbors keeps the nearest pairs of each centre "
+                                         r"of a full list: full must be True \(got full=False\)"):
         tricell.NeighborList(3.0, full=False, max_neighbors=4)
     with pytest.raises(ValueError, match=r"tie_tolerance must be finite and >= 0 \(got -1\)"):
         tricell.NeighborList(3.0, max_neighbors=4, tie_tolerance=-1.0)

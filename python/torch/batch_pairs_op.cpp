@@ -9,8 +9,10 @@
 // offsets (B + 1): structure s owns pairs offsets[s]:offsets[s + 1]. It is one call of
 // tricell::compute_neighbors_batch (threads across structures) on detached float64 copies of
 // the inputs, so each structure gets exactly the pairs of neighbor_pairs on it alone and no pair
-// joins two structures. Like neighbor_pairs it records nothing for autograd: tricell.torch
-// computes D and d from the pairs with ordinary torch ops. With `shells` (cutoffs, increasing,
+// joins two structures; max_neighbors, tie_tolerance and symmetric select the k nearest within
+// the cutoff of every structure's centres, as in neighbor_pairs. Like neighbor_pairs it records
+// nothing for autograd: tricell.torch computes D and d from the pairs (the op pair_vectors).
+// With `shells` (cutoffs, increasing,
 // none above the cutoff) the op also gives each pair's shell: the index of the first of them
 // above its distance d (len(shells) for d >= the last), by the search's own test d < r, so the
 // pairs a search at shells[k] stores are those of shell <= k. Messages name the argument and
@@ -57,7 +59,8 @@ std::vector<std::int64_t> pointer_array(const at::Tensor& batch_ptr, std::size_t
 std::tuple<at::Tensor, at::Tensor, at::Tensor, at::Tensor, at::Tensor>
 batch_pairs(const at::Tensor& positions, const at::Tensor& cells, const at::Tensor& pbc,
             const at::Tensor& batch_ptr, double cutoff, bool full, int64_t threads,
-            const c10::List<double>& shells) {
+            const c10::List<double>& shells, int64_t max_neighbors, double tie_tolerance,
+            bool symmetric) {
     check_positions_and_cell(op, positions, cells, "cells");
     check_cutoff(op, cutoff);
     const std::vector<std::int64_t> ptr = pointer_array(batch_ptr, std::size_t(positions.size(0)));
@@ -105,6 +108,10 @@ batch_pairs(const at::Tensor& positions, const at::Tensor& cells, const at::Tens
     options.cutoff = cutoff;
     options.half = !full;
     options.threads = int(threads);
+    set_nearest(op, options, max_neighbors, tie_tolerance, symmetric);
+    TORCH_CHECK(max_neighbors == 0 || radii.empty(), op,
+                ": shells and max_neighbors cannot be asked together (shells split a whole "
+                "list by distance)");
     options.quantities.shifts = true;
     options.quantities.distances = !radii.empty();
     options.quantities.vectors = false;
@@ -160,7 +167,8 @@ batch_pairs(const at::Tensor& positions, const at::Tensor& cells, const at::Tens
 
 TORCH_LIBRARY_FRAGMENT(tricell, m) {
     m.def("batch_pairs(Tensor positions, Tensor cells, Tensor pbc, Tensor batch_ptr, float cutoff, "
-          "bool full=True, int threads=1, float[] shells=[]) -> (Tensor i, Tensor j, Tensor S, "
+          "bool full=True, int threads=1, float[] shells=[], int max_neighbors=0, "
+          "float tie_tolerance=0., bool symmetric=False) -> (Tensor i, Tensor j, Tensor S, "
           "Tensor offsets, Tensor shell)",
           &batch_pairs);
 }

@@ -1,14 +1,15 @@
 // torch.ops.tricell.neighbor_pairs: tricell's neighbour search as a TorchScript custom op.
 //
 // The op takes N x 3 positions, a 3 x 3 cell with the lattice vectors as rows (float32 or
-// float64, CPU, one dtype for both), three periodicity flags, a cutoff, full/half and whether to
-// group the pairs by increasing i, and returns the pairs (i, j, S) as int64 tensors: i and j of
-// N_pairs entries, S of N_pairs x 3, with D = x_j - x_i + S @ cell shorter than the cutoff. It runs
-// tricell::compute_neighbors on detached float64 copies of the inputs, so it records nothing for
-// autograd and its outputs are integers; tricell.torch computes D and d from them with ordinary
-// torch ops, which is where gradients flow. Every argument is checked here, and a message names the
-// argument and what it got; the library's own errors (a non-finite position, a singular cell, a
-// pair limit) come through as RuntimeError with the library's message.
+// float64, CPU, one dtype for both), three periodicity flags, a cutoff, full/half, whether to
+// group the pairs by increasing i and the k nearest within the cutoff (max_neighbors,
+// tie_tolerance, symmetric: NeighborOptions' fields), and returns the pairs (i, j, S) as int64
+// tensors: i and j of N_pairs entries, S of N_pairs x 3, with D = x_j - x_i + S @ cell shorter
+// than the cutoff. It runs tricell::compute_neighbors on detached float64 copies of the inputs,
+// so it records nothing for autograd and its outputs are integers; tricell.torch computes D and
+// d from them (the op pair_vectors), which is where gradients flow. Every argument is checked here,
+// and a message names the argument and what it got; the library's own errors (a non-finite
+// position, a singular cell, a pair limit) come through as RuntimeError with the library's message.
 #include <cstdint>
 #include <tuple>
 
@@ -40,7 +41,8 @@ void check_arguments(const at::Tensor& positions, const at::Tensor& cell,
 
 std::tuple<at::Tensor, at::Tensor, at::Tensor>
 neighbor_pairs(const at::Tensor& positions, const at::Tensor& cell, const c10::List<bool>& periodic,
-               double cutoff, bool full, bool grouped) {
+               double cutoff, bool full, bool grouped, int64_t max_neighbors, double tie_tolerance,
+               bool symmetric) {
     check_arguments(positions, cell, periodic, cutoff);
     const at::Tensor x = positions.detach().to(at::kDouble).contiguous();
     const at::Tensor h = cell.detach().to(at::kDouble).contiguous();
@@ -53,6 +55,7 @@ neighbor_pairs(const at::Tensor& positions, const at::Tensor& cell, const c10::L
     options.cutoff = cutoff;
     options.half = !full;
     options.grouped = grouped;
+    set_nearest("neighbor_pairs", options, max_neighbors, tie_tolerance, symmetric);
     options.quantities.shifts = true;
     options.quantities.distances = false;
     options.quantities.vectors = false;
@@ -89,6 +92,7 @@ neighbor_pairs(const at::Tensor& positions, const at::Tensor& cell, const c10::L
 
 TORCH_LIBRARY(tricell, m) {
     m.def("neighbor_pairs(Tensor positions, Tensor cell, bool[] periodic, float cutoff, "
-          "bool full=True, bool grouped=False) -> (Tensor i, Tensor j, Tensor S)",
+          "bool full=True, bool grouped=False, int max_neighbors=0, float tie_tolerance=0., "
+          "bool symmetric=False) -> (Tensor i, Tensor j, Tensor S)",
           &neighbor_pairs);
 }

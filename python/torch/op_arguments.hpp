@@ -10,6 +10,7 @@
 #include <torch/types.h>
 
 #include <tricell/box.hpp>
+#include <tricell/neighbor_list.hpp>
 
 namespace tricell::torch_ops {
 
@@ -43,6 +44,21 @@ inline void check_positions_and_cell(const char* op, const at::Tensor& positions
 inline void check_cutoff(const char* op, double cutoff) {
     TORCH_CHECK(std::isfinite(cutoff) && cutoff > 0, op, ": cutoff must be finite and > 0 (got ",
                 cutoff, ")");
+}
+
+/// The k nearest within the cutoff: at most max_neighbors pairs per centre (0: no limit), with
+/// tie_tolerance and symmetric as NeighborOptions has them; the rules that name the op's own
+/// arguments are checked here, the rest by the library.
+inline void set_nearest(const char* op, NeighborOptions& options, std::int64_t max_neighbors,
+                        double tie_tolerance, bool symmetric) {
+    TORCH_CHECK(max_neighbors >= 0, op, ": max_neighbors must be >= 0 (0: no limit; got ",
+                max_neighbors, ")");
+    TORCH_CHECK(max_neighbors == 0 || !options.half, op,
+                ": max_neighbors keeps the nearest pairs of each centre of a full list: full "
+                "must be True");
+    options.max_neighbors = std::size_t(max_neighbors);
+    options.tie_tolerance = tie_tolerance;
+    options.symmetric = symmetric;
 }
 
 /// The 3 x 3 matrix at `rows` (row-major: the lattice vectors as rows) as a Box.

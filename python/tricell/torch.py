@@ -44,20 +44,31 @@ QUANTITIES = "ijSDd"
 class NeighborList(torch.nn.Module):
     """Periodic neighbour list of a cutoff for torch tensors (see the module docstring).
 
-    NeighborList(cutoff, full=True, threads=1): pairs with d < cutoff, except (i, i, 0);
-    full=False keeps each pair once (i < j, or i == j with S lexicographically positive), as
-    tricell.NeighborList does; threads work across the structures of compute_batch (0: every
-    core). Calling the module is compute(points, box, periodic, quantities)."""
+    NeighborList(cutoff, full=True, threads=1, max_neighbors=0, tie_tolerance=0.0,
+    symmetric=False): pairs with d < cutoff, except (i, i, 0); full=False keeps each pair once
+    (i < j, or i == j with S lexicographically positive), as tricell.NeighborList does; threads
+    work across the structures of compute_batch (0: every core). max_neighbors=k > 0 keeps the
+    k nearest within the cutoff of each centre (a full list, each centre's pairs nearest first,
+    ties by (d, j, S)), with every pair within tie_tolerance of the k-th distance too, and with
+    symmetric=True (j, i, -S) wherever (i, j, S) is kept. Calling the module is
+    compute(points, box, periodic, quantities)."""
 
     cutoff: float
     full: bool
     threads: int
+    max_neighbors: int
+    tie_tolerance: float
+    symmetric: bool
 
-    def __init__(self, cutoff: float, full: bool = True, threads: int = 1):
+    def __init__(self, cutoff: float, full: bool = True, threads: int = 1,
+                 max_neighbors: int = 0, tie_tolerance: float = 0.0, symmetric: bool = False):
         super().__init__()
         self.cutoff = float(cutoff)
         self.full = bool(full)
         self.threads = int(threads)
+        self.max_neighbors = int(max_neighbors)
+        self.tie_tolerance = float(tie_tolerance)
+        self.symmetric = bool(symmetric)
 
     def forward(self, points: torch.Tensor, box: torch.Tensor, periodic: List[bool],
                 quantities: str = QUANTITIES) -> List[torch.Tensor]:
@@ -69,7 +80,9 @@ class NeighborList(torch.nn.Module):
         """The tensors of the letters of quantities, in their order, for N x 3 points and a
         3 x 3 box (rows are lattice vectors) of one dtype on the CPU."""
         _check_quantities(quantities)
-        i, j, S = torch.ops.tricell.neighbor_pairs(points, box, periodic, self.cutoff, self.full)
+        i, j, S = torch.ops.tricell.neighbor_pairs(points, box, periodic, self.cutoff, self.full,
+                                                   False, self.max_neighbors, self.tie_tolerance,
+                                                   self.symmetric)
         D, d = torch.empty(0), torch.empty(0)
         if "D" in quantities or "d" in quantities:
             D, d = _vectors(points, box, i, j, S)
@@ -91,14 +104,19 @@ class NeighborList(torch.nn.Module):
         if periodic.dim() == 1 and count >= 0:
             periodic = periodic.expand(count, 3)
         i, j, S, offsets, _ = torch.ops.tricell.batch_pairs(
-            points, boxes, periodic, batch_ptr, self.cutoff, self.full, self.threads)
+            points, boxes, periodic, batch_ptr, self.cutoff, self.full, self.threads, [],
+            self.max_neighbors, self.tie_tolerance, self.symmetric)
         D, d = torch.empty(0), torch.empty(0)
         if "D" in quantities or "d" in quantities:
             D, d = _batch_vectors(points, boxes, i, j, S, offsets)
         return [offsets] + _columns(quantities, i, j, S, D, d)
 
     def extra_repr(self) -> str:
-        return f"cutoff={self.cutoff}, full={self.full}, threads={self.threads}"
+        text = f"cutoff={self.cutoff}, full={self.full}, threads={self.threads}"
+        if self.max_neighbors > 0:
+            text += (f", max_neighbors={self.max_neighbors}, tie_tolerance={self.tie_tolerance}"
+                     f", symmetric={self.symmetric}")
+        return text
 
 
 def _check_quantities(quantities: str):

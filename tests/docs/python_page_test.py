@@ -148,6 +148,17 @@ def check_requests(ns):
     assert ns["batch"][0][0][-1] == len(ns["batch"][0][1])
 
 
+def check_nearest(ns):
+    import tricell
+
+    points, box = ns["points"], ns["box"]
+    i, j, S, d = tricell.NeighborList(6.0).compute(points, box, True, "ijSd")
+    for a in range(len(points)):
+        mine = ns["d"][ns["o"][a]:ns["o"][a + 1]]
+        assert np.array_equal(mine, np.sort(d[i == a])[:20])
+    assert ns["offsets"][-1] == len(ns["S"]) and len(ns["D"]) > 0  # S: the batch call's
+
+
 def verify_inputs():
     import ase.neighborlist  # noqa: F401 - the block calls ase.neighborlist.neighbor_list
 
@@ -313,6 +324,7 @@ HARNESS = {
     ("The native API", 2): (verify_inputs, check_verify),
     ("Batches for machine learning", 1): (batch_inputs, check_batch),
     ("Several cutoffs per call", 1): (requests_inputs, check_requests),
+    ("The k nearest within the cutoff", 1): (requests_inputs, check_nearest),
     ("Drop-in for ASE", 1): (lambda: dict(atoms=silicon()), check_ase_function),
     ("Drop-in for ASE", 2): (ase_class_inputs, check_ase_class),
     ("Drop-in for pymatgen", 1): (pymatgen_inputs, check_pymatgen),
