@@ -18,7 +18,7 @@ namespace {
 using Key = RankedPair;
 
 // What a centre keeps: every pair (a centre of at most k pairs), or those up to its k-th key and,
-// with a tie tolerance, those with d <= limit.
+// with a tie tolerance, those with d <= limit (read by the symmetric rule only).
 struct Cut {
     bool all = true;
     Key kth{};
@@ -40,52 +40,124 @@ struct PairsView {
     }
 };
 
-// Marks an entry of the output order as the reverse of its source pair.
-constexpr std::size_t reversed = std::size_t(1) << (8 * sizeof(std::size_t) - 1);
-
-// A pair of the block being ranked: its distance and its place in the block.
+// A pair as its centre ranks it: its distance (compared first) and its index in the columns.
 struct Entry {
     double d;
-    std::uint32_t local;
+    std::size_t p;
 };
 
-// Ranks the pairs of centre c, [begin, end): writes the kept ones' places in the block, in key
-// order, to kept[begin ...], and returns their count; fills cut.
-std::size_t select_centre(const PairsView& pairs, std::size_t begin, std::size_t end,
-                          const NeighborOptions& options, std::vector<Entry>& entries,
-                          std::uint32_t* kept, Cut& cut) {
-    const std::size_t n = end - begin;
-    entries.resize(n);
-    for (std::size_t t = 0; t < n; ++t) {
-        entries[t] = Entry{pairs.d[begin + t], std::uint32_t(t)};
-    }
+// One thread's scratch for ranking a centre: each pair's bucket, the buckets' counts and
+// cursors, and the pairs of the buckets that matter in order (with room for the others, dumped).
+struct Ranking {
+    std::vector<std::uint32_t> bucket_of;
+    std::vector<std::size_t> counts, cursors;
+    std::vector<Entry> sorted;
+};
+
+// Sorts [first, last) by (d, j, S): insertion for the few pairs a bucket holds, else std::sort.
+void sort_entries(Entry* first, Entry* last, const PairsView& pairs) {
     const auto less = [&](const Entry& l, const Entry& r) {
         if (l.d != r.d) {
             return l.d < r.d;
         }
-        return pairs.key(begin + l.local) < pairs.key(begin + r.local);
+        return pairs.key(l.p) < pairs.key(r.p);
+    };
+    if (last - first > 16) {
+        std::sort(first, last, less);
+        return;
+    }
+    for (Entry* e = first + 1; e < last; ++e) {
+        const Entry moving = *e;
+        Entry* to = e;
+        for (; to > first && less(moving, to[-1]); --to) {
+            *to = to[-1];
+        }
+        *to = moving;
+    }
+}
+
+// Ranks the n pairs of one centre, block[0, n): writes the kept ones, in key order, to
+// block[0 ...] and returns their count; fills cut (its k-th key only when the symmetric rule
+// reads it). A bucket sort on (d / d_max)^3, about one pair per bucket for uniform density
+// (whose pair count grows as the cube of d): the buckets are counted, then only the pairs of the
+// buckets up to the k-th pair's (and the tolerance's) are placed and sorted.
+std::size_t rank_centre(Entry* block, std::size_t n, const PairsView& pairs,
+                        const NeighborOptions& options, Ranking& r, Cut& cut) {
+    cut = Cut();
+    if (n == 0) {
+        return 0;
+    }
+    std::size_t buckets = 8;
+    while (buckets < n && buckets < 4096) {
+        buckets *= 2;
+    }
+    double d_max = 0;
+    for (std::size_t t = 0; t < n; ++t) {
+        d_max = std::max(d_max, block[t].d);
+    }
+    const double to_unit = d_max > 0 ? 1.0 / d_max : 0.0;
+    // Nondecreasing in d (each rounded step is), so a bucket's pairs all rank after the pairs
+    // of lower buckets.
+    const auto bucket = [&](double d) {
+        const double u = d * to_unit;
+        const double x = double(buckets) * (u * u * u);
+        return x < double(buckets - 1) ? std::size_t(x) : buckets - 1;
+    };
+    r.bucket_of.resize(n);
+    r.counts.assign(buckets, 0);
+    for (std::size_t t = 0; t < n; ++t) {
+        const std::size_t b = bucket(block[t].d);
+        r.bucket_of[t] = std::uint32_t(b);
+        ++r.counts[b];
+    }
+    r.cursors.resize(buckets);
+    r.sorted.resize(2 * n);
+    Entry* const sorted = r.sorted.data();
+    // Places the pairs of buckets [from, to] from place `at` on, in order (the other pairs go
+    // to the dump past n, without a branch), and returns the place after them.
+    const auto place = [&](std::size_t from, std::size_t to, std::size_t at) {
+        const std::size_t first = at;
+        for (std::size_t b = 0; b < buckets; ++b) {
+            const bool placed = b >= from && b <= to;
+            r.cursors[b] = placed ? at : n;
+            at += placed ? r.counts[b] : 0;
+        }
+        for (std::size_t t = 0; t < n; ++t) {
+            sorted[r.cursors[r.bucket_of[t]]++] = block[t];
+        }
+        for (std::size_t b = from, begin = first; b <= to; begin += r.counts[b++]) {
+            sort_entries(sorted + begin, sorted + begin + r.counts[b], pairs);
+        }
+        return at;
     };
     const std::size_t k = options.max_neighbors;
-    std::size_t count = n;
-    cut = Cut();
-    if (n > k) {
-        std::nth_element(entries.begin(), entries.begin() + std::ptrdiff_t(k - 1), entries.end(),
-                         less);
-        const Entry kth = entries[k - 1];
-        cut.all = false;
-        cut.kth = pairs.key(begin + kth.local);
-        count = k;
-        if (options.tie_tolerance > 0) {
-            cut.limit = kth.d + options.tie_tolerance;
-            const auto tail = std::partition(entries.begin() + std::ptrdiff_t(k), entries.end(),
-                                             [&](const Entry& e) { return e.d <= cut.limit; });
-            count = std::size_t(tail - entries.begin());
+    if (n <= k) {
+        place(0, buckets - 1, 0);
+        std::copy(sorted, sorted + n, block);
+        return n;
+    }
+    // The bucket of the k-th pair.
+    std::size_t kth_bucket = 0;
+    for (std::size_t below = r.counts[0]; below < k; below += r.counts[++kth_bucket]) {
+    }
+    std::size_t end = place(0, kth_bucket, 0);
+    const Entry kth = sorted[k - 1];
+    cut.all = false;
+    if (options.symmetric) {
+        cut.kth = pairs.key(kth.p);
+    }
+    std::size_t count = k;
+    if (options.tie_tolerance > 0) {
+        cut.limit = kth.d + options.tie_tolerance;
+        const std::size_t last = bucket(cut.limit);
+        if (last > kth_bucket) {
+            end = place(kth_bucket + 1, last, end);
+        }
+        while (count < end && sorted[count].d <= cut.limit) {
+            ++count;
         }
     }
-    std::sort(entries.begin(), entries.begin() + std::ptrdiff_t(count), less);
-    for (std::size_t t = 0; t < count; ++t) {
-        kept[begin + t] = entries[t].local;
-    }
+    std::copy(sorted, sorted + count, block);
     return count;
 }
 
@@ -94,18 +166,18 @@ double negated(double v) {
     return v == 0.0 ? 0.0 : -v;
 }
 
+// Marks an entry of the output order as the reverse of its source pair.
+constexpr std::size_t reversed = std::size_t(1) << (8 * sizeof(std::size_t) - 1);
+
 // Rewrites `column` (width values per pair) as out[k] = value(order[k] without the flag, w,
-// flagged), through `spare`.
+// flagged) for the `count` entries of `order`, through `room` (count * width values).
 template <class T, class Value>
-void gather(PairArray<T>& column, std::size_t width, const std::vector<std::size_t>& order,
-            PairArray<unsigned char>& spare, std::size_t threads, const Value& value) {
+void gather(PairArray<T>& column, std::size_t width, const std::size_t* order, std::size_t count,
+            unsigned char* room, std::size_t threads, const Value& value) {
     if (column.empty()) {
         return;
     }
-    const std::size_t count = order.size();
-    spare.clear();
-    spare.resize(count * width * sizeof(T));
-    T* to = reinterpret_cast<T*>(spare.data());
+    T* to = reinterpret_cast<T*>(room);
     parallel_ranges(count, threads, [&](std::size_t begin, std::size_t end, std::size_t) {
         for (std::size_t k = begin; k < end; ++k) {
             const std::size_t source = order[k] & ~reversed;
@@ -119,7 +191,21 @@ void gather(PairArray<T>& column, std::size_t width, const std::vector<std::size
     if (count > 0) {
         std::memcpy(column.data(), to, count * width * sizeof(T));
     }
-    spare.clear();
+}
+
+// Calls visit(centre, first, end) for each run [first, end) of consecutive pairs of one centre:
+// the search meets a centre's pairs several at a time.
+template <class Visit> void for_each_run(const PairArray<std::uint32_t>& is, const Visit& visit) {
+    const std::size_t n = is.size();
+    for (std::size_t first = 0; first < n;) {
+        const std::uint32_t centre = is[first];
+        std::size_t end = first + 1;
+        while (end < n && is[end] == centre) {
+            ++end;
+        }
+        visit(centre, first, end);
+        first = end;
+    }
 }
 
 } // namespace
@@ -129,17 +215,45 @@ void keep_nearest_within(PairColumns& columns, std::size_t atoms, const Neighbor
     const std::size_t total = columns.size();
     const PairsView pairs{columns.i.data(), columns.j.data(), columns.shifts.data(),
                           columns.distances.data()};
-    const std::vector<std::size_t>& offsets = columns.offsets;
+
+    // `spare`: first each centre's pairs as (d, index), later the column being gathered; then
+    // the output order (at most every pair is kept, also by the symmetric rule: each centre's
+    // output is part of its full list).
+    const std::size_t widest = std::max<std::size_t>(
+        {sizeof(std::uint32_t), columns.shifts.empty() ? 0 : 3 * sizeof(std::int32_t),
+         columns.distances.empty() ? 0 : sizeof(double),
+         columns.vectors.empty() ? 0 : 3 * sizeof(double)});
+    const std::size_t area = total * std::max(sizeof(Entry), widest);
+    spare.clear(); // no copy of old contents when it grows
+    spare.resize(area + total * sizeof(std::size_t));
+    Entry* const entries = reinterpret_cast<Entry*>(spare.data());
+    std::size_t* const order = reinterpret_cast<std::size_t*>(spare.data() + area);
+
+    // Grouped by centre: a counting sort on i that moves runs.
+    std::vector<std::size_t> offsets(atoms + 1, 0);
+    for_each_run(columns.i, [&](std::uint32_t centre, std::size_t first, std::size_t end) {
+        offsets[centre + 1] += end - first;
+    });
+    std::partial_sum(offsets.begin(), offsets.end(), offsets.begin());
+    {
+        std::vector<std::size_t> cursor(offsets.begin(), offsets.end() - 1);
+        for_each_run(columns.i, [&](std::uint32_t centre, std::size_t first, std::size_t end) {
+            Entry* to = entries + cursor[centre];
+            cursor[centre] += end - first;
+            for (std::size_t p = first; p < end; ++p) {
+                *to++ = Entry{pairs.d[p], p};
+            }
+        });
+    }
 
     // Each centre's kept pairs, in key order, at the start of its block.
-    std::vector<std::uint32_t> kept(total);
     std::vector<std::size_t> keep(atoms);
     std::vector<Cut> cuts(atoms);
     parallel_ranges(atoms, threads, [&](std::size_t begin, std::size_t end, std::size_t) {
-        std::vector<Entry> entries;
+        Ranking ranking;
         for (std::size_t c = begin; c < end; ++c) {
-            keep[c] = select_centre(pairs, offsets[c], offsets[c + 1], options, entries,
-                                    kept.data(), cuts[c]);
+            keep[c] = rank_centre(entries + offsets[c], offsets[c + 1] - offsets[c], pairs, options,
+                                  ranking, cuts[c]);
         }
     });
 
@@ -151,7 +265,7 @@ void keep_nearest_within(PairColumns& columns, std::size_t atoms, const Neighbor
         const auto for_each_missing_reverse = [&](auto&& visit) {
             for (std::size_t c = 0; c < atoms; ++c) {
                 for (std::size_t t = 0; t < keep[c]; ++t) {
-                    const std::size_t p = offsets[c] + kept[offsets[c] + t];
+                    const std::size_t p = entries[offsets[c] + t].p;
                     const std::uint32_t target = pairs.j[p];
                     if (!cuts[target].keeps(pairs.reverse_key(p))) {
                         visit(target, p);
@@ -182,37 +296,40 @@ void keep_nearest_within(PairColumns& columns, std::size_t atoms, const Neighbor
     for (std::size_t c = 0; c < atoms; ++c) {
         out_offsets[c + 1] = out_offsets[c] + keep[c] + (extra_offsets[c + 1] - extra_offsets[c]);
     }
-    std::vector<std::size_t> order(out_offsets[atoms]);
+    const std::size_t count = out_offsets[atoms];
     parallel_ranges(atoms, threads, [&](std::size_t begin, std::size_t end, std::size_t) {
         for (std::size_t c = begin; c < end; ++c) {
             std::size_t own = 0, gained = extra_offsets[c], to = out_offsets[c];
-            const std::size_t first = offsets[c];
+            const Entry* const kept = entries + offsets[c];
             while (own < keep[c] || gained < extra_offsets[c + 1]) {
-                const bool take_own = gained == extra_offsets[c + 1] ||
-                                      (own < keep[c] && pairs.key(first + kept[first + own]) <
-                                                            pairs.reverse_key(extras[gained]));
-                order[to++] = take_own ? first + kept[first + own++] : extras[gained++] | reversed;
+                const bool take_own =
+                    gained == extra_offsets[c + 1] ||
+                    (own < keep[c] && pairs.key(kept[own].p) < pairs.reverse_key(extras[gained]));
+                order[to++] = take_own ? kept[own++].p : extras[gained++] | reversed;
             }
         }
     });
-    kept = std::vector<std::uint32_t>();
 
-    // The columns in that order: j first (a reverse pair's j is its source's i), i last.
-    gather(columns.j, 1, order, spare, threads, [&](std::size_t p, std::size_t, bool flipped) {
-        return flipped ? pairs.i[p] : pairs.j[p];
-    });
-    gather(columns.shifts, 3, order, spare, threads,
+    // The columns in that order, through the front of `spare`: j first (a reverse pair's j is
+    // its source's i), i last.
+    unsigned char* const room = spare.data();
+    gather(columns.j, 1, order, count, room, threads,
+           [&](std::size_t p, std::size_t, bool flipped) {
+               return flipped ? pairs.i[p] : pairs.j[p];
+           });
+    gather(columns.shifts, 3, order, count, room, threads,
            [&](std::size_t p, std::size_t w, bool flipped) {
                return flipped ? -pairs.s[3 * p + w] : pairs.s[3 * p + w];
            });
-    gather(columns.distances, 1, order, spare, threads,
+    gather(columns.distances, 1, order, count, room, threads,
            [&](std::size_t p, std::size_t, bool) { return pairs.d[p]; });
     const double* vectors = columns.vectors.data();
-    gather(columns.vectors, 3, order, spare, threads,
+    gather(columns.vectors, 3, order, count, room, threads,
            [&](std::size_t p, std::size_t w, bool flipped) {
                return flipped ? negated(vectors[3 * p + w]) : vectors[3 * p + w];
            });
-    columns.i.resize(order.size());
+    spare.clear(); // the capacity stays for the next call
+    columns.i.resize(count);
     for (std::size_t c = 0; c < atoms; ++c) {
         std::fill(columns.i.begin() + std::ptrdiff_t(out_offsets[c]),
                   columns.i.begin() + std::ptrdiff_t(out_offsets[c + 1]), std::uint32_t(c));

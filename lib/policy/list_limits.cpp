@@ -55,12 +55,12 @@ ListMemory list_memory(const NeighborOptions& options) {
     add(q.distances || nearest, "d", 8);
     add(q.vectors, "D", 24);
     if (nearest) {
-        // Grouping first (the widest column), then the selection: each pair's place in its
-        // block (4), the output order (8 a kept pair, at most every pair), with the symmetric
-        // rule the reverses gained (8 at most a pair), and one column being gathered; per atom
-        // the offsets, the grouping's cursor, then each centre's cut (40) and counts (24).
-        m.order_per_pair = 4 + 8 + (options.symmetric ? 8 : 0) + m.widest;
-        m.per_atom = 8 + 40 + 24;
+        // Each pair's (d, index) grouped by centre (16), later the column being gathered in
+        // the same room, and the output order (8 a kept pair, at most every pair), with the
+        // symmetric rule the reverses gained (8 at most a pair); per atom the offsets, a cursor,
+        // each centre's count and cut (40) and the output's offsets (and the reverses' two).
+        m.order_per_pair = std::max(16.0, m.widest) + 8 + (options.symmetric ? 8 : 0);
+        m.per_atom = 8 + 8 + 8 + 40 + 8 + (options.symmetric ? 16 : 0);
         m.order = "select";
     } else if (options.sorted) {
         m.order_per_pair = 8 + m.widest; // the permutation, one column being permuted

@@ -4,8 +4,9 @@
 // the list, a column that grows (a list past its estimate) holds its old and its new copy for
 // the time of the copy; grouping scatters one column at a time (the widest one extra); sorting
 // holds an 8-byte permutation and one column extra; both write 8-byte offsets and cursors per atom.
-// Keeping the nearest within the cutoff (max_neighbors) groups, then holds each pair's place in
-// its block, the output order and one column extra, and per atom each centre's cut and counts.
+// Keeping the nearest within the cutoff (max_neighbors) holds each pair's (d, index) grouped by
+// centre (then, in the same room, one column being gathered) and the output order, and per atom
+// each centre's offsets, count and cut.
 // The peak of a list is its columns plus the working space of its order. NeighborOptions::max_bytes
 // bounds that peak, NeighborOptions::max_pairs the pairs: ListLimits turns both into pair
 // counts for the stores, and refuses an estimate or a list past either with a PairLimitError

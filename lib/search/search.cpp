@@ -151,12 +151,11 @@ void NeighborSearch::compute(NeighborList& out) const {
         }
         if (s.options.sorted) {
             detail::sort_pairs(columns, s.atom_count);
-        } else if (s.options.grouped || nearest) {
-            detail::group_pairs(columns, s.atom_count, detail::ListAccess::order_scratch(out));
-        }
-        if (nearest) {
+        } else if (nearest) { // groups the pairs it keeps
             detail::keep_nearest_within(columns, s.atom_count, s.options, plan.threads,
                                         detail::ListAccess::order_scratch(out));
+        } else if (s.options.grouped) {
+            detail::group_pairs(columns, s.atom_count, detail::ListAccess::order_scratch(out));
         }
         if (!q.shifts) {
             columns.shifts.clear();
