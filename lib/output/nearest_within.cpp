@@ -260,32 +260,37 @@ void keep_nearest_within(PairColumns& columns, std::size_t atoms, const Neighbor
     // The symmetric rule: the reverse of each kept pair that its other end does not keep, by
     // target centre (a counting sort), each target's in key order.
     std::vector<std::size_t> extra_offsets(atoms + 1, 0);
-    std::vector<std::size_t> extras;
+    std::vector<Entry> extras;
     if (options.symmetric) {
-        const auto for_each_missing_reverse = [&](auto&& visit) {
-            for (std::size_t c = 0; c < atoms; ++c) {
-                for (std::size_t t = 0; t < keep[c]; ++t) {
-                    const std::size_t p = entries[offsets[c] + t].p;
-                    const std::uint32_t target = pairs.j[p];
-                    if (!cuts[target].keeps(pairs.reverse_key(p))) {
-                        visit(target, p);
-                    }
+        // One pass over the kept pairs (their other ends are anywhere in the columns).
+        std::vector<Entry> missing;
+        std::vector<std::uint32_t> targets;
+        for (std::size_t c = 0; c < atoms; ++c) {
+            for (std::size_t t = 0; t < keep[c]; ++t) {
+                const Entry e = entries[offsets[c] + t];
+                const std::uint32_t target = pairs.j[e.p];
+                if (!cuts[target].keeps(pairs.reverse_key(e.p))) {
+                    missing.push_back(e);
+                    targets.push_back(target);
+                    ++extra_offsets[target + 1];
                 }
             }
-        };
-        for_each_missing_reverse(
-            [&](std::uint32_t target, std::size_t) { ++extra_offsets[target + 1]; });
+        }
         std::partial_sum(extra_offsets.begin(), extra_offsets.end(), extra_offsets.begin());
-        extras.resize(extra_offsets[atoms]);
+        extras.resize(missing.size());
         std::vector<std::size_t> cursor(extra_offsets.begin(), extra_offsets.end() - 1);
-        for_each_missing_reverse(
-            [&](std::uint32_t target, std::size_t p) { extras[cursor[target]++] = p; });
+        for (std::size_t m = 0; m < missing.size(); ++m) {
+            extras[cursor[targets[m]]++] = missing[m];
+        }
         parallel_ranges(atoms, threads, [&](std::size_t begin, std::size_t end, std::size_t) {
             for (std::size_t c = begin; c < end; ++c) {
                 std::sort(extras.begin() + std::ptrdiff_t(extra_offsets[c]),
                           extras.begin() + std::ptrdiff_t(extra_offsets[c + 1]),
-                          [&](std::size_t l, std::size_t r) {
-                              return pairs.reverse_key(l) < pairs.reverse_key(r);
+                          [&](const Entry& l, const Entry& r) {
+                              if (l.d != r.d) {
+                                  return l.d < r.d;
+                              }
+                              return pairs.reverse_key(l.p) < pairs.reverse_key(r.p);
                           });
             }
         });
@@ -302,10 +307,13 @@ void keep_nearest_within(PairColumns& columns, std::size_t atoms, const Neighbor
             std::size_t own = 0, gained = extra_offsets[c], to = out_offsets[c];
             const Entry* const kept = entries + offsets[c];
             while (own < keep[c] || gained < extra_offsets[c + 1]) {
-                const bool take_own =
-                    gained == extra_offsets[c + 1] ||
-                    (own < keep[c] && pairs.key(kept[own].p) < pairs.reverse_key(extras[gained]));
-                order[to++] = take_own ? kept[own++].p : extras[gained++] | reversed;
+                bool take_own = gained == extra_offsets[c + 1];
+                if (!take_own && own < keep[c]) {
+                    const Entry &mine = kept[own], &theirs = extras[gained];
+                    take_own = mine.d != theirs.d ? mine.d < theirs.d
+                                                  : pairs.key(mine.p) < pairs.reverse_key(theirs.p);
+                }
+                order[to++] = take_own ? kept[own++].p : extras[gained++].p | reversed;
             }
         }
     });
