@@ -72,8 +72,8 @@ std::uint32_t scan_generic(const RangeScanInput& in, std::uint32_t a0, std::uint
                            const CandidateRange* ranges, std::uint32_t count,
                            const PairSlots& out) {
     std::uint32_t n = 0;
-    for (std::uint32_t q = 0; q < count; ++q) {
-        for (std::uint32_t a = a0; a < a1; ++a) {
+    for (std::uint32_t a = a0; a < a1; ++a) {
+        for (std::uint32_t q = 0; q < count; ++q) {
             n = scan_scalar(in, a, first_candidate(in, a, ranges[q]), ranges[q], out, n);
         }
     }
@@ -89,14 +89,13 @@ __attribute__((target("avx2"))) std::uint32_t scan_avx2(const RangeScanInput& in
                                                         std::uint32_t count, const PairSlots& out) {
     const __m256d vcut = _mm256_set1_pd(in.cutoff_sq);
     std::uint32_t n = 0;
-    for (std::uint32_t q = 0; q < count; ++q) {
-        const CandidateRange& r = ranges[q];
-        const __m256d vvx = _mm256_set1_pd(r.v[0]), vvy = _mm256_set1_pd(r.v[1]),
-                      vvz = _mm256_set1_pd(r.v[2]);
-        for (std::uint32_t a = a0; a < a1; ++a) {
-            const double ax = in.x[a], ay = in.y[a], az = in.z[a];
-            const __m256d vax = _mm256_set1_pd(ax), vay = _mm256_set1_pd(ay),
-                          vaz = _mm256_set1_pd(az);
+    for (std::uint32_t a = a0; a < a1; ++a) {
+        const __m256d vax = _mm256_set1_pd(in.x[a]), vay = _mm256_set1_pd(in.y[a]),
+                      vaz = _mm256_set1_pd(in.z[a]);
+        for (std::uint32_t q = 0; q < count; ++q) {
+            const CandidateRange& r = ranges[q];
+            const __m256d vvx = _mm256_set1_pd(r.v[0]), vvy = _mm256_set1_pd(r.v[1]),
+                          vvz = _mm256_set1_pd(r.v[2]);
             std::uint32_t b = first_candidate(in, a, r);
             for (; b + 4 <= r.b1; b += 4) {
                 const __m256d dx =
@@ -175,23 +174,23 @@ scan_avx512(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
     const __m512d vcut = _mm512_set1_pd(cutoff_sq);
     const __m256i lanes = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
     std::uint32_t n = 0;
-    for (std::uint32_t q = 0; q < count; ++q) {
-        const CandidateRange& r = ranges[q];
-        const std::uint32_t b1 = r.b1;
-        const bool own = r.own, self_turn = r.self_turn;
-        const std::int32_t rs[3] = {r.s[0], r.s[1], r.s[2]};
-        const __m512d vvx = _mm512_set1_pd(r.v[0]), vvy = _mm512_set1_pd(r.v[1]),
-                      vvz = _mm512_set1_pd(r.v[2]);
-        // S of 8 pairs through r with every image 0: 24 ints.
-        const __m512i s_lo =
-            _mm512_setr_epi32(rs[0], rs[1], rs[2], rs[0], rs[1], rs[2], rs[0], rs[1], rs[2], rs[0],
-                              rs[1], rs[2], rs[0], rs[1], rs[2], rs[0]);
-        const __m256i s_hi =
-            _mm256_setr_epi32(rs[1], rs[2], rs[0], rs[1], rs[2], rs[0], rs[1], rs[2]);
-        for (std::uint32_t a = a0; a < a1; ++a) {
-            const __m512d vax = _mm512_set1_pd(x[a]), vay = _mm512_set1_pd(y[a]),
-                          vaz = _mm512_set1_pd(z[a]);
-            const __m256i vi = _mm256_set1_epi32(std::int32_t(index[a]));
+    for (std::uint32_t a = a0; a < a1; ++a) {
+        const __m512d vax = _mm512_set1_pd(x[a]), vay = _mm512_set1_pd(y[a]),
+                      vaz = _mm512_set1_pd(z[a]);
+        const __m256i vi = _mm256_set1_epi32(std::int32_t(index[a]));
+        for (std::uint32_t q = 0; q < count; ++q) {
+            const CandidateRange& r = ranges[q];
+            const std::uint32_t b1 = r.b1;
+            const bool own = r.own, self_turn = r.self_turn;
+            const std::int32_t rs[3] = {r.s[0], r.s[1], r.s[2]};
+            const __m512d vvx = _mm512_set1_pd(r.v[0]), vvy = _mm512_set1_pd(r.v[1]),
+                          vvz = _mm512_set1_pd(r.v[2]);
+            // S of 8 pairs through r with every image 0: 24 ints.
+            const __m512i s_lo =
+                _mm512_setr_epi32(rs[0], rs[1], rs[2], rs[0], rs[1], rs[2], rs[0], rs[1], rs[2],
+                                  rs[0], rs[1], rs[2], rs[0], rs[1], rs[2], rs[0]);
+            const __m256i s_hi =
+                _mm256_setr_epi32(rs[1], rs[2], rs[0], rs[1], rs[2], rs[0], rs[1], rs[2]);
             for (std::uint32_t b = first_candidate(in, a, r); b < b1; b += 8) {
                 const __mmask8 valid =
                     b1 - b >= 8 ? __mmask8(0xFF) : __mmask8((1u << (b1 - b)) - 1);

@@ -60,9 +60,10 @@ struct PairSlots {
     bool squares;
 };
 
-/// Tests atoms [a0, a1) against every range of ranges[0, count) and writes their pairs range by
-/// range, atom by atom, each atom's in the range's order; returns how many. The slots have room
-/// for (a1 - a0) times the ranges' candidates, plus kernel_slack.
+/// Tests atoms [a0, a1) against every range of ranges[0, count) and writes their pairs atom by
+/// atom, each atom's range by range in the ranges' order (so an atom's pairs of one call are one
+/// run, which grouping by i moves whole); returns how many. The slots have room for (a1 - a0)
+/// times the ranges' candidates, plus kernel_slack.
 using RangeKernel = std::uint32_t (*)(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
                                       const CandidateRange* ranges, std::uint32_t count,
                                       const PairSlots& out);
