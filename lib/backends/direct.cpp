@@ -17,7 +17,9 @@
 // of one cell along a trajectory, or of the same cell again, skips the enumeration.
 //
 // Half lists take a < b through every image and a == b through the positive half of the images
-// (the scanner orients what it is given canonically). The work units are the atoms a.
+// (the scanner orients what it is given canonically). Where S = 0 is the only image (a molecule,
+// or a cutoff short of every image), all atoms form one candidate range through the range kernel
+// instead. The work units are the atoms a.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -147,6 +149,18 @@ class DirectBackend final : public Backend {
     double neighbours() const override { return double(atoms_) * double(all_.size()); }
 
     void visit(std::size_t begin, std::size_t end, CandidateScanner& scan) const override {
+        if (all_.size() == 1) {
+            // Only S = 0 can hold a pair (a molecule, or a cutoff short of every image): all the
+            // atoms are one range, tested in vector blocks.
+            CandidateRange range{half_ ? std::uint32_t(begin) : 0u,
+                                 std::uint32_t(atoms_),
+                                 {0, 0, 0},
+                                 {0, 0, 0},
+                                 true,
+                                 false};
+            scan.cell(std::uint32_t(begin), std::uint32_t(end), &range, 1);
+            return;
+        }
         for (std::size_t a = begin; a < end; ++a) {
             const auto ua = std::uint32_t(a);
             const Eigen::Vector3d xa = scan.position(ua);

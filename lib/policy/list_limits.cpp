@@ -45,7 +45,7 @@ ListMemory list_memory(const NeighborOptions& options) {
     m.widest = 4;
     const auto add = [&](bool stored, const char* name, double bytes) {
         if (stored) {
-            m.columns += cat(", ", name);
+            m.columns.append(", ").append(name); // short: no allocation, no stream
             m.per_pair += bytes;
             m.widest = std::max(m.widest, bytes);
         }
