@@ -10,7 +10,7 @@ constexpr double pi = 3.14159265358979323846;
 
 /// The volume of a ball of radius r, 4/3 π r^3.
 inline double sphere_volume(double r) {
-    return 4.0 / 3.0 * pi * std::pow(r, 3);
+    return 4.0 / 3.0 * pi * (r * r * r);
 }
 
 } // namespace tricell::detail

@@ -29,8 +29,12 @@ double ListMemory::growing(double pairs) const {
     return pairs * (per_pair + widest);
 }
 
+std::string ListMemory::columns() const {
+    return cat("i, j", shifts ? ", S" : "", distances ? ", d" : "", vectors ? ", D" : "");
+}
+
 std::string ListMemory::rates() const {
-    std::string text = cat(per_pair, " bytes a pair of ", columns);
+    std::string text = cat(per_pair, " bytes a pair of ", columns());
     if (order_per_pair > 0) {
         text += cat(" + ", order_per_pair, " a pair to ", order, " them + ", per_atom, " an atom");
     }
@@ -40,20 +44,19 @@ std::string ListMemory::rates() const {
 ListMemory list_memory(const NeighborOptions& options) {
     const Quantities& q = options.quantities;
     ListMemory m;
-    m.columns = "i, j";
     m.per_pair = 8;
     m.widest = 4;
-    const auto add = [&](bool stored, const char* name, double bytes) {
+    const auto add = [&](bool stored, bool& flag, double bytes) {
+        flag = stored;
         if (stored) {
-            m.columns.append(", ").append(name); // short: no allocation, no stream
             m.per_pair += bytes;
             m.widest = std::max(m.widest, bytes);
         }
     };
     const bool nearest = options.max_neighbors != 0;
-    add(q.shifts || options.sorted || nearest, "S", 12);
-    add(q.distances || nearest, "d", 8);
-    add(q.vectors, "D", 24);
+    add(q.shifts || options.sorted || nearest, m.shifts, 12);
+    add(q.distances || nearest, m.distances, 8);
+    add(q.vectors, m.vectors, 24);
     if (nearest) {
         // Each pair's (d, index) grouped by centre (16), later the column being gathered in
         // the same room, and the output order (8 a kept pair, at most every pair), with the
@@ -120,7 +123,7 @@ void ListLimits::fail_growth(std::size_t size) const {
     const double bytes = memory_.growing(double(size));
     throw PairLimitError(cat("the neighbour list outgrew its estimate: growing its columns of ",
                              size, " pairs needs ", std::llround(bytes), " bytes (",
-                             memory_.per_pair, " bytes a pair of ", memory_.columns, " + ",
+                             memory_.per_pair, " bytes a pair of ", memory_.columns(), " + ",
                              memory_.widest, " a pair while a column is copied)"),
                          double(size), bytes, max_bytes_);
 }

@@ -26,13 +26,15 @@ struct ListMemory {
     double widest = 0;         ///< the widest stored column (held twice while it grows)
     double order_per_pair = 0; ///< grouping's or sorting's working space
     double per_atom = 0;       ///< offsets and cursors (grouped or sorted)
-    std::string columns;       ///< "i, j, S, d"
-    const char* order = "";    ///< "sort", "group", "select" or "" (unordered)
+    bool shifts = false, distances = false, vectors = false; ///< stored besides i and j
+    const char* order = ""; ///< "sort", "group", "select" or "" (unordered)
 
     /// The list at its peak: columns and the order's working space.
     double peak(double pairs, std::size_t atoms) const;
     /// The columns while one of them grows.
     double growing(double pairs) const;
+    /// "i, j, S, d": the stored columns (for messages only: built when asked).
+    std::string columns() const;
     /// "52 bytes a pair of i, j, S, d, D + 32 a pair to sort them + 16 an atom".
     std::string rates() const;
 };

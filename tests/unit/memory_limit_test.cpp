@@ -77,7 +77,7 @@ TEST(MaxBytes, TheModelCountsEachColumnAndTheOrdersWorkingSpace) {
     o.quantities = tricell::Quantities{true, true, true};
     tricell::detail::ListMemory m = tricell::detail::list_memory(o);
     EXPECT_EQ(m.per_pair, 52);
-    EXPECT_EQ(m.columns, "i, j, S, d, D");
+    EXPECT_EQ(m.columns(), "i, j, S, d, D");
     EXPECT_EQ(m.peak(1000, 10), 52000);
     EXPECT_EQ(m.growing(1000), 76000); // D copied while it grows
     o.sorted = true;
@@ -88,12 +88,12 @@ TEST(MaxBytes, TheModelCountsEachColumnAndTheOrdersWorkingSpace) {
     o.grouped = true;
     o.quantities = tricell::Quantities{false, false, false};
     m = tricell::detail::list_memory(o);
-    EXPECT_EQ(m.columns, "i, j");
+    EXPECT_EQ(m.columns(), "i, j");
     EXPECT_EQ(m.peak(1000, 10), 1000 * (8 + 4) + 10 * 16);
     EXPECT_EQ(m.rates(), "8 bytes a pair of i, j + 4 a pair to group them + 16 an atom");
     o.grouped = false;
     o.sorted = true; // sorting stores S
-    EXPECT_EQ(tricell::detail::list_memory(o).columns, "i, j, S");
+    EXPECT_EQ(tricell::detail::list_memory(o).columns(), "i, j, S");
 }
 
 TEST(MaxBytes, RefusesTheEstimateInBuildAndNamesPairsBytesAndLimit) {
