@@ -15,8 +15,12 @@ namespace tricell::detail {
 
 namespace {
 
+// The processor's threads, asked once: the C library reads them from the file system on every
+// call, which costs a tiny search many times its own work.
 std::size_t hardware_threads() {
-    return std::max<std::size_t>(1, std::thread::hardware_concurrency());
+    static const std::size_t threads =
+        std::max<std::size_t>(1, std::thread::hardware_concurrency());
+    return threads;
 }
 
 std::size_t compute_threads(const NeighborOptions& options, double estimated_pairs,
