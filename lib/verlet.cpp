@@ -107,7 +107,7 @@ void VerletList::set_query(std::optional<std::vector<std::uint32_t>> query) {
 void VerletList::build(const Box& box, PointsView positions) {
     tracker_.reset();
     NeighborOptions search_options = options_.neighbors;
-    search_options.cutoff = detail::candidate_radius(list_radius(), box, positions);
+    search_options.cutoff = detail::candidate_radius(list_radius(), box.matrix(), positions);
     search_options.quantities.shifts = true;
     search_options.quantities.distances = false;
     search_options.quantities.vectors = false;

@@ -141,7 +141,7 @@ void DistributedVerletList::build(const Decomposition& decomposition, const Box&
         options_.validate();
         // Pairs of the owned atoms only (the first of the local atoms): no ghost-ghost pair.
         NeighborOptions search = options_.neighbors;
-        search.cutoff = tricell::detail::candidate_radius(list_radius(), open, local);
+        search.cutoff = tricell::detail::candidate_radius(list_radius(), open.matrix(), local);
         std::vector<std::uint32_t> query(owned);
         std::iota(query.begin(), query.end(), 0u);
         search.query = std::move(query);
