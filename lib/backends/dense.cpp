@@ -45,6 +45,10 @@ class DenseBackend final : public Backend {
             reach_[1] = std::max(reach_[1], std::abs(row.db));
             reach_[2] = std::max({reach_[2], std::abs(row.dc_lo), std::abs(row.dc_hi)});
         }
+        wraps_ = false;
+        for (std::size_t k = 0; k < 3; ++k) {
+            wraps_ = wraps_ || 2 * reach_[k] + 1 > dims[k];
+        }
     }
 
     std::size_t unit_count() const override { return cells_.grid().cell_count(); }
@@ -129,7 +133,17 @@ class DenseBackend final : public Backend {
                     }
                 }
             }
-            scan.cell(begin1, end1, pieces.data(), std::uint32_t(pieces.size()));
+            if (wraps_) {
+                // A stencil wider than the grid (a small cell): the rows come round as many
+                // images of the same few atoms, which the scanner takes faster piece by piece.
+                for (const CandidateRange& r : pieces) {
+                    scan.ranges(begin1, end1, r.b0, r.b1,
+                                ImageShift{{r.s[0], r.s[1], r.s[2]}, {r.v[0], r.v[1], r.v[2]}},
+                                r.own);
+                }
+            } else {
+                scan.cell(begin1, end1, pieces.data(), std::uint32_t(pieces.size()));
+            }
         }
     }
 
@@ -160,6 +174,7 @@ class DenseBackend final : public Backend {
     SortedCellList sorted_;
     std::vector<InnerRow> inner_rows_;
     std::array<int, 3> reach_{};
+    bool wraps_ = false; ///< the stencil reaches round a periodic axis onto its own cells
 };
 
 } // namespace
