@@ -7,8 +7,9 @@
 //
 // - store: writing P records (i, j, S, d; 28 bytes) into arrays already allocated and touched
 //   (a reused list), one sequential pass per column, P = the workload's pair count;
-// - test: the library's own run-time selected distance kernel (AVX2 with lane compaction where
-//   the processor has it) over C candidates in full 64-candidate blocks held in L1, C = the
+// - test: the library's own run-time selected distance kernel of the general scan (AVX2 with lane
+//   compaction where the processor has it; the search's range kernel stores its hits directly)
+//   over C candidates in full 64-candidate blocks held in L1, C = the
 //   distance tests the search itself makes for the workload (NeighborSearch::unit_work, what
 //   its stencil and clusters leave to test). The block points are placed so that the hit
 //   fraction matches P / C.

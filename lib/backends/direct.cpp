@@ -18,8 +18,8 @@
 //
 // Half lists take a < b through every image and a == b through the positive half of the images
 // (the scanner orients what it is given canonically). Where S = 0 is the only image (a molecule,
-// or a cutoff short of every image), all atoms form one candidate range through the range kernel
-// instead. The work units are the atoms a.
+// or a cutoff short of every image) of a few atoms, all atoms form one candidate range through
+// the range kernel instead. The work units are the atoms a.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -149,9 +149,11 @@ class DirectBackend final : public Backend {
     double neighbours() const override { return double(atoms_) * double(all_.size()); }
 
     void visit(std::size_t begin, std::size_t end, CandidateScanner& scan) const override {
-        if (all_.size() == 1) {
-            // Only S = 0 can hold a pair (a molecule, or a cutoff short of every image): all the
-            // atoms are one range, tested in vector blocks.
+        if (all_.size() == 1 && kernel_group * atoms_ + kernel_slack <= PairSink::block_size) {
+            // Only S = 0 can hold a pair (a molecule, or a cutoff short of every image), and the
+            // atoms are few: they are one range, tested in vector blocks. Any group of atoms
+            // against it fits one claim, so the pairs come atom by atom whatever the split
+            // between threads.
             CandidateRange range{half_ ? std::uint32_t(begin) : 0u,
                                  std::uint32_t(atoms_),
                                  {0, 0, 0},

@@ -16,12 +16,11 @@
 
 namespace tricell::detail {
 
-/// `box`: the box's matrix H (Box::matrix()).
-inline double candidate_radius(double list_radius, const Eigen::Matrix3d& box,
-                               PointsView positions) {
+/// `h`: the box's matrix (Box::matrix()).
+inline double candidate_radius(double list_radius, const Eigen::Matrix3d& h, PointsView positions) {
     constexpr double candidate_margin = 1e-10;
     constexpr double coordinate_margin = 1e-13;
-    double scale = box.cwiseAbs().maxCoeff();
+    double scale = h.cwiseAbs().maxCoeff();
     for (std::size_t i = 0; i < positions.size(); ++i) {
         const double r = Eigen::Vector3d(positions[i]).cwiseAbs().maxCoeff();
         scale = std::isfinite(r) ? std::max(scale, r) : scale; // the search reports non-finite

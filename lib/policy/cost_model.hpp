@@ -175,8 +175,9 @@ constexpr double max_direct_images = double(1 << 22);
 /// search) for atoms with `neighbours` neighbours each, of a `half` list: cells of a whole
 /// cutoff, whose stencil holds about 27 r^3 of candidates (6.5 per pair), or of half a cutoff,
 /// which brings that to about 3.8 per pair but pays a range of a few atoms per stencil row and
-/// atom. Halving wins once rows hold enough atoms: measured from about 75 neighbours in a half
-/// list and 100 in a full one (docs/performance.md).
+/// atom. Halving wins once rows hold enough atoms: `tricell bench` on random systems (density
+/// 0.05 and 0.1) and diamond put the crossing at about 75 neighbours in a half list and 100 in
+/// a full one. Only the dense backend's range kernel gains from it (policy.cpp).
 inline double grid_cells_per_cutoff(double neighbours, bool half) {
     return neighbours >= (half ? 75.0 : 100.0) ? 2.0 : 1.0;
 }

@@ -206,13 +206,24 @@ BuildPlan plan_build(const NeighborOptions& options, const Box& frame,
     // Neighbours per atom: of the full list's pairs (a subset's share over its query atoms).
     const double neighbours =
         plan.estimated_pairs / double(query_atoms) * (options.half && !subset ? 2.0 : 1.0);
-    plan.cells_per_cutoff = options.cells_per_cutoff != 0
-                                ? options.cells_per_cutoff
-                                : grid_cells_per_cutoff(neighbours, options.half);
-    plan.backend = options.backend == SearchBackend::automatic
-                       ? automatic_backend(frame, wrapped.fractional, wrapped.lower, wrapped.upper,
-                                           search_radius, plan.cells_per_cutoff, options)
-                       : options.backend;
+    // Cells of half a cutoff pay only in the dense backend's range kernel (a uniform cutoff, no
+    // query); every other search keeps cells of a whole cutoff.
+    const bool fused = !subset && options.radii.empty() && options.species_cutoffs.empty();
+    const auto backend_for = [&](double cells_per_cutoff) {
+        return options.backend == SearchBackend::automatic
+                   ? automatic_backend(frame, wrapped.fractional, wrapped.lower, wrapped.upper,
+                                       search_radius, cells_per_cutoff, options)
+                   : options.backend;
+    };
+    plan.cells_per_cutoff = options.cells_per_cutoff != 0 ? options.cells_per_cutoff
+                            : fused ? grid_cells_per_cutoff(neighbours, options.half)
+                                    : 1.0;
+    plan.backend = backend_for(plan.cells_per_cutoff);
+    if (options.cells_per_cutoff == 0 && plan.cells_per_cutoff != 1 &&
+        plan.backend != SearchBackend::dense) {
+        plan.cells_per_cutoff = 1;
+        plan.backend = backend_for(1);
+    }
     return plan;
 }
 

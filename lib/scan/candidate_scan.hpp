@@ -1,6 +1,8 @@
 // The shared inner loop of every backend: a backend names candidate (atom range, atom range,
-// image shift) triples in its own atom order, and the CandidateScanner tests them against the
-// cutoff through the run-time selected distance kernel, turns each hit into the caller's indices
+// image shift) triples in its own atom order, or a home cell's atoms with all its ranges at once
+// (cell(), through the range kernel of range_kernel.hpp for a uniform cutoff), and the
+// CandidateScanner tests them against the cutoff through the run-time selected distance
+// kernel, turns each hit into the caller's indices
 // and an image shift relative to the caller's positions, applies a variable cutoff when there is
 // one, orients half-list pairs canonically and hands them to the PairSink.
 //
@@ -229,6 +231,11 @@ class CandidateScanner {
             return;
         }
         tests_ += std::uint64_t(a1 - a0) * candidates;
+        for (std::uint32_t q = 0; q < count && half_; ++q) {
+            for (std::uint32_t a = a0; a < a1 && list[q].own; ++a) { // a half list skips b <= a
+                tests_ -= std::min(std::max(a + 1, list[q].b0), list[q].b1) - list[q].b0;
+            }
+        }
         const PairSink::Slots out = sink_.claim((a1 - a0) * candidates + kernel_slack);
         sink_.commit(range_kernel_(range_input_, a0, a1, list, count, out));
     }

@@ -280,7 +280,10 @@ scan_avx512(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
     }
     if (od != nullptr && !squares) {
         for (std::uint32_t k = 0; k < n; k += 8) {
-            _mm512_storeu_pd(od + k, _mm512_maskz_sqrt_pd(0xff, _mm512_loadu_pd(od + k)));
+            // only the stored lanes: the slack past n may hold anything (a trapping NaN)
+            const __mmask8 tail = n - k >= 8 ? __mmask8(0xff) : __mmask8((1u << (n - k)) - 1);
+            _mm512_mask_storeu_pd(od + k, tail,
+                                  _mm512_maskz_sqrt_pd(tail, _mm512_maskz_loadu_pd(tail, od + k)));
         }
     }
     return n;

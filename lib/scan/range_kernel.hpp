@@ -5,9 +5,8 @@
 // hits of a block at once, compressed in registers where the processor has AVX-512 (i, j, S, d
 // and D as asked, a half list's pairs turned into their canonical orientation by lane masks). No
 // per-range call, no hit buffer and no second pass over the hits: that is what makes cells of half
-// the cutoff pay, whose rows hold a few atoms each but cover about half the volume that cells of a
-// whole cutoff do (the stencil's ~27 r^3 against the sphere's 4.2 r^3 shrinks towards 2-3 times the
-// sphere).
+// the cutoff pay, whose rows hold a few atoms each but leave fewer candidates
+// (grid_cells_per_cutoff in policy/cost_model.hpp).
 //
 // The arithmetic is distance_kernel.hpp's, term for term: D = (x_b - x_a) + T, d^2 = dx dx +
 // dy dy + dz dz without fused multiply-adds, d = sqrt(d^2), a zero component of D stored as +0,

@@ -325,6 +325,42 @@ TEST(NeighborList, BatchedOutputEqualsBruteForceForAnyThreadCount) {
     }
 }
 
+TEST(NeighborList, DirectBackendOrderIsTheSameForAnyThreadCount) {
+    // An open box: S = 0 is the direct backend's only image. A few atoms take one range through
+    // the range kernel, many the per-pair path; either way the unordered list is identical for
+    // 1 to 3 threads (its work units are atoms, split anywhere between threads).
+    const Box open =
+        Box::from_columns(Eigen::Matrix3d::Identity() * 30, tricell::Periodicity::none());
+    for (const int atoms : {40, 63, 64, 1200}) {
+        SCOPED_TRACE(atoms);
+        std::mt19937_64 rng{std::uint64_t(atoms)};
+        std::uniform_real_distribution<double> u(0, atoms < 100 ? 6.0 : 20.0);
+        std::vector<Eigen::Vector3d> x;
+        for (int k = 0; k < atoms; ++k) {
+            x.emplace_back(u(rng), u(rng), u(rng));
+        }
+        for (const bool half : {false, true}) {
+            NeighborOptions o = with_cutoff(3);
+            o.backend = SearchBackend::direct;
+            o.half = half;
+            NeighborList first;
+            for (const int threads : {1, 2, 3}) {
+                o.threads = threads;
+                const NeighborList list = tricell::compute_neighbors(open, x, o);
+                if (threads == 1) {
+                    first = list;
+                    const tricell::testing::PairMap expected =
+                        tricell::testing::brute_force_pairs(open, x, 3);
+                    ASSERT_EQ(list.size(), half ? expected.size() / 2 : expected.size());
+                } else {
+                    ASSERT_EQ(list.i(), first.i()) << threads << " threads, half " << half;
+                    ASSERT_EQ(list.j(), first.j()) << threads << " threads, half " << half;
+                }
+            }
+        }
+    }
+}
+
 TEST(NeighborList, ThreadedBuildNamesTheFirstBadPosition) {
     // The checks and the wrap run on contiguous ranges of atoms, one per thread: the error names
     // the lowest bad index whatever the thread count, and a non-finite position anywhere comes
