@@ -4,8 +4,12 @@
 // consecutive in the sorted order, so a row is one contiguous range of atoms, split only where
 // it wraps around the c axis (each piece with its own image shift). The work units are cells.
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdlib>
+#include <limits>
+#include <memory>
+#include <mutex>
 
 #include "backends/backend.hpp"
 #include "backends/grid_neighbourhood.hpp"
@@ -49,6 +53,7 @@ class DenseBackend final : public Backend {
         for (std::size_t k = 0; k < 3; ++k) {
             wraps_ = wraps_ || 2 * reach_[k] + 1 > dims[k];
         }
+        boxes_once_ = std::make_unique<std::once_flag>();
     }
 
     std::size_t unit_count() const override { return cells_.grid().cell_count(); }
@@ -64,6 +69,8 @@ class DenseBackend final : public Backend {
     double neighbours() const override { return double(cells_.stencil().size()); }
 
     void visit(std::size_t begin, std::size_t end, CandidateScanner& scan) const override {
+        std::call_once(*boxes_once_, [&] { build_boxes(scan); });
+        scan.prune_by_cells(boxes_.data(), starts_.data(), bound_);
         const std::array<int, 3>& n = cells_.grid().dims();
         const bool periodic_c = cells_.grid().periodicity()[2];
         std::vector<CandidateRange> pieces; // of one home cell's rows
@@ -85,6 +92,8 @@ class DenseBackend final : public Backend {
                     r.b0 = sorted_.cell_start(std::size_t(std::ptrdiff_t(c1) + row.lo));
                     r.b1 = sorted_.cell_end(std::size_t(std::ptrdiff_t(c1) + row.hi));
                     r.own = row.own;
+                    r.c0 = std::uint32_t(std::ptrdiff_t(c1) + row.lo);
+                    r.c1 = std::uint32_t(std::ptrdiff_t(c1) + row.hi);
                     count += r.b0 != r.b1 ? 1 : 0;
                 }
                 scan.cell(begin1, end1, inner.data(), count);
@@ -129,7 +138,10 @@ class DenseBackend final : public Backend {
                                                         {s.s[0], s.s[1], s.s[2]},
                                                         {s.v[0], s.v[1], s.v[2]},
                                                         own,
-                                                        false});
+                                                        false,
+                                                        std::uint32_t(column + std::size_t(first)),
+                                                        std::uint32_t(column + std::size_t(last)),
+                                                        0});
                     }
                 }
             }
@@ -154,6 +166,37 @@ class DenseBackend final : public Backend {
     }
 
   private:
+    // The bounding box of each cell's atoms, from the scanner's positions (the ones the kernel
+    // tests), and the cells' starts.
+    void build_boxes(const CandidateScanner& scan) const {
+        const std::size_t cells = cells_.grid().cell_count();
+        const double* x = scan.x();
+        const double* y = scan.y();
+        const double* z = scan.z();
+        const double inf = std::numeric_limits<double>::infinity();
+        boxes_.resize(6 * cells);
+        starts_.resize(cells + 1);
+        double bound = 0;
+        for (std::size_t c = 0; c < cells; ++c) {
+            starts_[c] = sorted_.cell_start(c);
+            double lo[3] = {inf, inf, inf}, hi[3] = {-inf, -inf, -inf};
+            for (std::uint32_t a = sorted_.cell_start(c); a < sorted_.cell_end(c); ++a) {
+                lo[0] = std::min(lo[0], x[a]), hi[0] = std::max(hi[0], x[a]);
+                lo[1] = std::min(lo[1], y[a]), hi[1] = std::max(hi[1], y[a]);
+                lo[2] = std::min(lo[2], z[a]), hi[2] = std::max(hi[2], z[a]);
+            }
+            for (int k = 0; k < 3; ++k) {
+                boxes_[6 * c + k] = lo[k];
+                boxes_[6 * c + 3 + k] = hi[k];
+                if (lo[k] <= hi[k]) {
+                    bound = std::max({bound, std::abs(lo[k]), std::abs(hi[k])});
+                }
+            }
+        }
+        starts_[cells] = cells > 0 ? sorted_.cell_end(cells - 1) : 0;
+        bound_ = bound;
+    }
+
     // A stencil row as flat offsets from the home cell: cells [lo, hi] of the sorted order.
     struct InnerRow {
         std::ptrdiff_t lo, hi;
@@ -175,6 +218,10 @@ class DenseBackend final : public Backend {
     std::vector<InnerRow> inner_rows_;
     std::array<int, 3> reach_{};
     bool wraps_ = false; ///< the stencil reaches round a periodic axis onto its own cells
+    mutable std::unique_ptr<std::once_flag> boxes_once_;
+    mutable std::vector<double> boxes_;
+    mutable std::vector<std::uint32_t> starts_;
+    mutable double bound_ = 0;
 };
 
 } // namespace

@@ -172,14 +172,17 @@ inline bool choose_direct(std::size_t atoms, double min_width, double radius) {
 constexpr double max_direct_images = double(1 << 22);
 
 /// Cells per cutoff of a grid search (when NeighborOptions::cells_per_cutoff leaves it to the
-/// search) for atoms with `neighbours` neighbours each, of a `half` list: cells of a whole
-/// cutoff, whose stencil holds about 27 r^3 of candidates (6.5 per pair), or of half a cutoff,
-/// which brings that to about 3.8 per pair but pays a range of a few atoms per stencil row and
-/// atom. Halving wins once rows hold enough atoms: `tricell bench` on random systems (density
-/// 0.05 and 0.1) and diamond put the crossing at about 75 neighbours in a half list and 100 in
-/// a full one. Only the dense backend's range kernel gains from it (policy.cpp).
-inline double grid_cells_per_cutoff(double neighbours, bool half) {
-    return neighbours >= (half ? 75.0 : 100.0) ? 2.0 : 1.0;
+/// search) for atoms with `neighbours` neighbours each: cells of a whole cutoff, whose stencil
+/// holds about 27 r^3 of candidates, or of half a cutoff, which holds about 16 r^3 but pays a
+/// range of a few atoms per stencil row and atom. The range kernel leaves out, for each atom,
+/// the end cells of a row whose atoms' bounding box lies beyond the cutoff, which takes much of
+/// the larger stencil's surplus away (on random systems 7.3 candidates per pair become 6.5, on
+/// diamond 6.5 become 3.4). Halving still wins once rows hold enough atoms: `tricell bench` on
+/// random systems (density 0.05 and 0.1, full and half lists) puts the crossing at about 130
+/// neighbours (90: whole cells 1.25x faster; 107: 1.19x; 144: half cells 1.05-1.08x faster).
+/// Only the dense backend's range kernel gains from it (policy.cpp).
+inline double grid_cells_per_cutoff(double neighbours) {
+    return neighbours >= 130.0 ? 2.0 : 1.0;
 }
 
 /// Dense or hash for a grid search: dense when the full-resolution cell count fits the cap.

@@ -111,7 +111,11 @@ class CandidateScanner {
             return;
         }
         for (std::uint32_t q = 0; q < count; ++q) {
-            list[q].self_turn = half_ && flip(0, 0, list[q].s[0], list[q].s[1], list[q].s[2]);
+            CandidateRange& r = list[q];
+            r.self_turn = half_ && flip(0, 0, r.s[0], r.s[1], r.s[2]);
+            if (range_input_.boxes != nullptr) {
+                r.reach_sq = cell_reach_sq(cutoff_, box_bound_, r.v);
+            }
         }
         for (std::uint32_t g0 = a0; g0 < a1; g0 += kernel_group) {
             const std::uint32_t g1 = std::min(g0 + kernel_group, a1);
@@ -135,6 +139,20 @@ class CandidateScanner {
             kernel_ranges(g0, g1, list + first, count - first, candidates);
         }
     }
+
+    /// Prunes cell() by the bounding boxes of the cells' atoms: 6 per cell (lower x, y, z, upper
+    /// x, y, z of the atoms' positions here), cell c holding atoms [starts[c], starts[c + 1]),
+    /// `bound` the largest magnitude of a coordinate; each range of cell() then names its cells.
+    void prune_by_cells(const double* boxes, const std::uint32_t* starts, double bound) {
+        range_input_.boxes = boxes;
+        range_input_.cell_start = starts;
+        box_bound_ = bound;
+    }
+
+    /// The atoms' positions (for a backend's boxes of them).
+    const double* x() const { return x_; }
+    const double* y() const { return y_; }
+    const double* z() const { return z_; }
 
     /// One candidate pair (a, b) through `s` (backends without contiguous ranges).
     void pair(std::uint32_t a, std::uint32_t b, const ImageShift& s) {
@@ -230,14 +248,8 @@ class CandidateScanner {
         if (count == 0) {
             return;
         }
-        tests_ += std::uint64_t(a1 - a0) * candidates;
-        for (std::uint32_t q = 0; q < count && half_; ++q) {
-            for (std::uint32_t a = a0; a < a1 && list[q].own; ++a) { // a half list skips b <= a
-                tests_ -= std::min(std::max(a + 1, list[q].b0), list[q].b1) - list[q].b0;
-            }
-        }
         const PairSink::Slots out = sink_.claim((a1 - a0) * candidates + kernel_slack);
-        sink_.commit(range_kernel_(range_input_, a0, a1, list, count, out));
+        sink_.commit(range_kernel_(range_input_, a0, a1, list, count, out, tests_));
     }
 
     static ImageShift image_shift(const CandidateRange& r) {
@@ -506,6 +518,8 @@ class CandidateScanner {
     const std::uint32_t* index_;
     Eigen::Matrix3d h_;
     double cutoff_sq_;
+    double cutoff_ = std::sqrt(cutoff_sq_);
+    double box_bound_ = 0;
     const CutoffRule& rule_;
     bool half_;
     const SearchFrame& frame_;

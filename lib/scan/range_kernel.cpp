@@ -1,5 +1,7 @@
 #include "scan/range_kernel.hpp"
 
+#include "scan/distance_kernel.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -46,17 +48,75 @@ inline void store_hit(const RangeScanInput& in, std::uint32_t a, std::uint32_t b
     }
 }
 
-// The first candidate of range r for atom a: a half list takes only b > a in the own range.
-inline std::uint32_t first_candidate(const RangeScanInput& in, std::uint32_t a,
-                                     const CandidateRange& r) {
-    return r.own && in.half ? std::max(r.b0, a + 1) : r.b0;
+// The cell boxes prune the first pruned_ranges ranges of a call (a dense grid's stencil has a
+// few dozen); any further ones are tested whole.
+constexpr std::uint32_t pruned_ranges = 64;
+
+// What each atom a0 + g of a call tests of range q < pruned_ranges: [b[q][g], e[q][g]), its
+// cells from the first to the last whose box comes within reach of the atom (b >= e: none).
+struct Spans {
+    std::uint32_t b[pruned_ranges][kernel_group];
+    std::uint32_t e[pruned_ranges][kernel_group];
+};
+
+// Whether the box lower (lx, ly, lz), upper (ux, uy, uz) lies at least sqrt(reach_sq) from the
+// point (tx, ty, tz). The vector version below computes the same terms.
+inline bool beyond(const double* box, double tx, double ty, double tz, double reach_sq) {
+    const double gx = std::max(std::max(box[0] - tx, tx - box[3]), 0.0);
+    const double gy = std::max(std::max(box[1] - ty, ty - box[4]), 0.0);
+    const double gz = std::max(std::max(box[2] - tz, tz - box[5]), 0.0);
+    return gx * gx + gy * gy + gz * gz >= reach_sq;
 }
 
-// Atom a against candidates [b, r.b1) of range r, one at a time; returns the next free slot.
+// Fills spans for atoms [a0, a1) and ranges [0, min(count, pruned_ranges)), one at a time.
+void trim_scalar(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
+                 const CandidateRange* ranges, std::uint32_t count, Spans& spans) {
+    for (std::uint32_t q = 0; q < std::min(count, pruned_ranges); ++q) {
+        const CandidateRange& r = ranges[q];
+        for (std::uint32_t a = a0; a < a1; ++a) {
+            // a moved by -v, against the unmoved boxes
+            const double tx = in.x[a] - r.v[0], ty = in.y[a] - r.v[1], tz = in.z[a] - r.v[2];
+            std::uint32_t b = r.b1, e = r.b0;
+            bool found = false;
+            for (std::uint32_t c = r.c0; c <= r.c1; ++c) {
+                if (!beyond(in.boxes + 6 * std::size_t(c), tx, ty, tz, r.reach_sq)) {
+                    b = found ? b : in.cell_start[c];
+                    e = in.cell_start[c + 1];
+                    found = true;
+                }
+            }
+            spans.b[q][a - a0] = b;
+            spans.e[q][a - a0] = e;
+        }
+    }
+}
+
+// The candidates [b, e) of range q (ranges[q] = r) that atom a tests (b >= e: none): a half list
+// takes only b > a in the own range, and with cell boxes the cells at either end of the range
+// whose boxes lie beyond the cutoff's reach are left out (they hold no pair of a, so the pairs
+// and their order stay the same).
+struct Candidates {
+    std::uint32_t b, e;
+};
+
+inline Candidates candidates(const RangeScanInput& in, std::uint32_t a, std::uint32_t a0,
+                             const CandidateRange& r, std::uint32_t q, const Spans& spans) {
+    Candidates c{r.b0, r.b1};
+    if (in.boxes != nullptr && q < pruned_ranges) {
+        c = Candidates{spans.b[q][a - a0], spans.e[q][a - a0]};
+    }
+    if (r.own && in.half) {
+        c.b = std::max(c.b, a + 1);
+    }
+    return c;
+}
+
+// Atom a against candidates [b, e) of range r, one at a time; returns the next free slot.
 inline std::uint32_t scan_scalar(const RangeScanInput& in, std::uint32_t a, std::uint32_t b,
-                                 const CandidateRange& r, const PairSlots& out, std::uint32_t n) {
+                                 std::uint32_t e, const CandidateRange& r, const PairSlots& out,
+                                 std::uint32_t n) {
     const double ax = in.x[a], ay = in.y[a], az = in.z[a];
-    for (; b < r.b1; ++b) {
+    for (; b < e; ++b) {
         const double dx = (in.x[b] - ax) + r.v[0];
         const double dy = (in.y[b] - ay) + r.v[1];
         const double dz = (in.z[b] - az) + r.v[2];
@@ -69,12 +129,18 @@ inline std::uint32_t scan_scalar(const RangeScanInput& in, std::uint32_t a, std:
 }
 
 std::uint32_t scan_generic(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
-                           const CandidateRange* ranges, std::uint32_t count,
-                           const PairSlots& out) {
+                           const CandidateRange* ranges, std::uint32_t count, const PairSlots& out,
+                           std::uint64_t& tests) {
+    Spans spans;
+    if (in.boxes != nullptr) {
+        trim_scalar(in, a0, a1, ranges, count, spans);
+    }
     std::uint32_t n = 0;
     for (std::uint32_t a = a0; a < a1; ++a) {
         for (std::uint32_t q = 0; q < count; ++q) {
-            n = scan_scalar(in, a, first_candidate(in, a, ranges[q]), ranges[q], out, n);
+            const Candidates c = candidates(in, a, a0, ranges[q], q, spans);
+            tests += c.b < c.e ? c.e - c.b : 0;
+            n = scan_scalar(in, a, c.b, c.e, ranges[q], out, n);
         }
     }
     return n;
@@ -86,8 +152,13 @@ std::uint32_t scan_generic(const RangeScanInput& in, std::uint32_t a0, std::uint
 __attribute__((target("avx2"))) std::uint32_t scan_avx2(const RangeScanInput& in, std::uint32_t a0,
                                                         std::uint32_t a1,
                                                         const CandidateRange* ranges,
-                                                        std::uint32_t count, const PairSlots& out) {
+                                                        std::uint32_t count, const PairSlots& out,
+                                                        std::uint64_t& tests) {
     const __m256d vcut = _mm256_set1_pd(in.cutoff_sq);
+    Spans spans;
+    if (in.boxes != nullptr) {
+        trim_scalar(in, a0, a1, ranges, count, spans);
+    }
     std::uint32_t n = 0;
     for (std::uint32_t a = a0; a < a1; ++a) {
         const __m256d vax = _mm256_set1_pd(in.x[a]), vay = _mm256_set1_pd(in.y[a]),
@@ -96,8 +167,10 @@ __attribute__((target("avx2"))) std::uint32_t scan_avx2(const RangeScanInput& in
             const CandidateRange& r = ranges[q];
             const __m256d vvx = _mm256_set1_pd(r.v[0]), vvy = _mm256_set1_pd(r.v[1]),
                           vvz = _mm256_set1_pd(r.v[2]);
-            std::uint32_t b = first_candidate(in, a, r);
-            for (; b + 4 <= r.b1; b += 4) {
+            const Candidates c = candidates(in, a, a0, r, q, spans);
+            tests += c.b < c.e ? c.e - c.b : 0;
+            std::uint32_t b = c.b;
+            for (; b + 4 <= c.e; b += 4) {
                 const __m256d dx =
                     _mm256_add_pd(_mm256_sub_pd(_mm256_loadu_pd(in.x + b), vax), vvx);
                 const __m256d dy =
@@ -125,7 +198,7 @@ __attribute__((target("avx2"))) std::uint32_t scan_avx2(const RangeScanInput& in
                     store_hit(in, a, b + lane, r, lx[lane], ly[lane], lz[lane], ld[lane], out, n++);
                 }
             }
-            n = scan_scalar(in, a, b, r, out, n);
+            n = scan_scalar(in, a, b, c.e, r, out, n);
         }
     }
     return n;
@@ -149,13 +222,59 @@ struct TripleMasks {
 
 const TripleMasks triple_masks;
 
+// max(lower - t, t - upper, 0) per lane (the masked max: GCC 12 warns of the plain one's
+// undefined pass-through as of an uninitialised value).
+__attribute__((target("avx512f"))) inline __m512d gap(__m512d t, double lower, double upper) {
+    const __mmask8 all = 0xFF;
+    return _mm512_maskz_max_pd(all,
+                               _mm512_maskz_max_pd(all, _mm512_sub_pd(_mm512_set1_pd(lower), t),
+                                                   _mm512_sub_pd(t, _mm512_set1_pd(upper))),
+                               _mm512_setzero_pd());
+}
+
+// trim_scalar() with the atoms in the lanes: the same terms, so the same spans.
+__attribute__((target("avx512f,avx512vl,avx512dq"))) void
+trim_avx512(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
+            const CandidateRange* ranges, std::uint32_t count, Spans& spans) {
+    const __mmask8 atoms = __mmask8((1u << (a1 - a0)) - 1);
+    const __m512d ax = _mm512_maskz_loadu_pd(atoms, in.x + a0);
+    const __m512d ay = _mm512_maskz_loadu_pd(atoms, in.y + a0);
+    const __m512d az = _mm512_maskz_loadu_pd(atoms, in.z + a0);
+    for (std::uint32_t q = 0; q < std::min(count, pruned_ranges); ++q) {
+        const CandidateRange& r = ranges[q];
+        const __m512d tx = _mm512_sub_pd(ax, _mm512_set1_pd(r.v[0]));
+        const __m512d ty = _mm512_sub_pd(ay, _mm512_set1_pd(r.v[1]));
+        const __m512d tz = _mm512_sub_pd(az, _mm512_set1_pd(r.v[2]));
+        const __m512d reach = _mm512_set1_pd(r.reach_sq);
+        __m256i b = _mm256_set1_epi32(std::int32_t(r.b1)), e = _mm256_set1_epi32(std::int32_t(r.b0));
+        __mmask8 found = 0;
+        for (std::uint32_t c = r.c0; c <= r.c1; ++c) {
+            const double* box = in.boxes + 6 * std::size_t(c);
+            const __m512d gx = gap(tx, box[0], box[3]);
+            const __m512d gy = gap(ty, box[1], box[4]);
+            const __m512d gz = gap(tz, box[2], box[5]);
+            const __m512d g_sq = _mm512_add_pd(
+                _mm512_add_pd(_mm512_mul_pd(gx, gx), _mm512_mul_pd(gy, gy)), _mm512_mul_pd(gz, gz));
+            const __mmask8 near = _mm512_cmp_pd_mask(g_sq, reach, _CMP_LT_OQ);
+            b = _mm256_mask_mov_epi32(b, __mmask8(near & ~found),
+                                      _mm256_set1_epi32(std::int32_t(in.cell_start[c])));
+            e = _mm256_mask_mov_epi32(e, near,
+                                      _mm256_set1_epi32(std::int32_t(in.cell_start[c + 1])));
+            found = __mmask8(found | near);
+        }
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(spans.b[q]), b);
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(spans.e[q]), e);
+    }
+}
+
 // AVX-512: eight candidates at a time through masked loads; a block's hits are compressed in
 // registers and stored whole (the slots have kernel_slack room): i, j (turned with min/max in a
 // half list), d and, with every image 0, S as the range's shift or its negative per lane. D, and
 // S with images, are written per hit from the compressed lanes.
 __attribute__((target("avx512f,avx512vl,avx512dq,bmi2"))) std::uint32_t
 scan_avx512(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
-            const CandidateRange* ranges, std::uint32_t count, const PairSlots& out) {
+            const CandidateRange* ranges, std::uint32_t count, const PairSlots& out,
+            std::uint64_t& tests) {
     // Locals: the vector stores below may alias anything, so fields read through `in` and
     // `out` would be read again after each.
     const double* const x = in.x;
@@ -172,6 +291,10 @@ scan_avx512(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
     double* const ov = out.vectors;
     const bool squares = out.squares;
     const __m512d vcut = _mm512_set1_pd(cutoff_sq);
+    Spans spans;
+    if (in.boxes != nullptr) {
+        trim_avx512(in, a0, a1, ranges, count, spans);
+    }
     const __m256i lanes = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
     std::uint32_t n = 0;
     for (std::uint32_t a = a0; a < a1; ++a) {
@@ -180,7 +303,12 @@ scan_avx512(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
         const __m256i vi = _mm256_set1_epi32(std::int32_t(index[a]));
         for (std::uint32_t q = 0; q < count; ++q) {
             const CandidateRange& r = ranges[q];
-            const std::uint32_t b1 = r.b1;
+            const Candidates span = candidates(in, a, a0, r, q, spans);
+            if (span.b >= span.e) {
+                continue;
+            }
+            tests += span.e - span.b;
+            const std::uint32_t b1 = span.e;
             const bool own = r.own, self_turn = r.self_turn;
             const std::int32_t rs[3] = {r.s[0], r.s[1], r.s[2]};
             const __m512d vvx = _mm512_set1_pd(r.v[0]), vvy = _mm512_set1_pd(r.v[1]),
@@ -191,7 +319,7 @@ scan_avx512(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
                                   rs[0], rs[1], rs[2], rs[0], rs[1], rs[2], rs[0]);
             const __m256i s_hi =
                 _mm256_setr_epi32(rs[1], rs[2], rs[0], rs[1], rs[2], rs[0], rs[1], rs[2]);
-            for (std::uint32_t b = first_candidate(in, a, r); b < b1; b += 8) {
+            for (std::uint32_t b = span.b; b < b1; b += 8) {
                 const __mmask8 valid =
                     b1 - b >= 8 ? __mmask8(0xFF) : __mmask8((1u << (b1 - b)) - 1);
                 const __m512d dx =

@@ -16,6 +16,7 @@
 // searches through its general path.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -33,6 +34,11 @@ struct CandidateRange {
     /// Half lists: whether the pair of an atom with its own image through s is turned around
     /// (its canonical orientation has -S; set by the scanner from the caller's frame).
     bool self_turn;
+    /// With cell boxes (RangeScanInput::boxes): the range is cells [c0, c1] of the sorted order.
+    std::uint32_t c0 = 0, c1 = 0;
+    /// With cell boxes: a cell whose box, moved by v, lies at least this far (squared) from an
+    /// atom holds no pair of it (set by the scanner).
+    double reach_sq = 0;
 };
 
 /// What the kernel reads: the atom table's columns and the list's rules.
@@ -45,6 +51,10 @@ struct RangeScanInput {
     bool zero_images;           ///< every image is 0
     double cutoff_sq;           ///< d^2 < cutoff_sq counts
     bool half;                  ///< canonical orientation
+    /// Bounding boxes of the atoms of each cell, 6 per cell (lower x, y, z, upper x, y, z), or
+    /// null (no pruning); cell c holds atoms [cell_start[c], cell_start[c + 1]).
+    const double* boxes = nullptr;
+    const std::uint32_t* cell_start = nullptr;
 };
 
 /// Where the pairs go: the next free place of each stored column (null: not stored), with room
@@ -63,9 +73,20 @@ struct PairSlots {
 /// atom, each atom's range by range in the ranges' order (so an atom's pairs of one call are one
 /// run, which grouping by i moves whole); returns how many. The slots have room for (a1 - a0)
 /// times the ranges' candidates, plus kernel_slack.
+/// `tests` grows by the distance tests made.
 using RangeKernel = std::uint32_t (*)(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
                                       const CandidateRange* ranges, std::uint32_t count,
-                                      const PairSlots& out);
+                                      const PairSlots& out, std::uint64_t& tests);
+
+/// CandidateRange::reach_sq for a range through translation v, cutoff `cutoff`, coordinates of
+/// magnitude at most `bound`: the cutoff plus a margin far wider than the rounding of the
+/// kernel's D and of the distance to a box (a few ulps of the largest coordinate or translation),
+/// squared.
+inline double cell_reach_sq(double cutoff, double bound, const double v[3]) {
+    const double reach =
+        cutoff + 1e-12 * (cutoff + bound + std::abs(v[0]) + std::abs(v[1]) + std::abs(v[2]));
+    return reach * reach;
+}
 
 /// One instruction set's range kernel.
 struct RangeKernelVersion {
