@@ -216,8 +216,8 @@ BuildPlan plan_build(const NeighborOptions& options, const Box& frame,
                    : options.backend;
     };
     plan.cells_per_cutoff = options.cells_per_cutoff != 0 ? options.cells_per_cutoff
-                            : fused ? grid_cells_per_cutoff(neighbours)
-                                    : 1.0;
+                            : fused                       ? grid_cells_per_cutoff(neighbours)
+                                                          : 1.0;
     plan.backend = backend_for(plan.cells_per_cutoff);
     if (options.cells_per_cutoff == 0 && plan.cells_per_cutoff != 1 &&
         plan.backend != SearchBackend::dense) {

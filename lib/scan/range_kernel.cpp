@@ -246,7 +246,8 @@ trim_avx512(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
         const __m512d ty = _mm512_sub_pd(ay, _mm512_set1_pd(r.v[1]));
         const __m512d tz = _mm512_sub_pd(az, _mm512_set1_pd(r.v[2]));
         const __m512d reach = _mm512_set1_pd(r.reach_sq);
-        __m256i b = _mm256_set1_epi32(std::int32_t(r.b1)), e = _mm256_set1_epi32(std::int32_t(r.b0));
+        __m256i b = _mm256_set1_epi32(std::int32_t(r.b1)),
+                e = _mm256_set1_epi32(std::int32_t(r.b0));
         __mmask8 found = 0;
         for (std::uint32_t c = r.c0; c <= r.c1; ++c) {
             const double* box = in.boxes + 6 * std::size_t(c);
