@@ -3,6 +3,9 @@
 // paired with the stencil row by row. With c varying fastest, the neighbour cells of one row are
 // consecutive in the sorted order, so a row is one contiguous range of atoms, split only where
 // it wraps around the c axis (each piece with its own image shift). The work units are cells.
+// Each range names its first and last cell, and the first visit after a binning takes the
+// bounding box of every cell's atoms (from the scanner's positions, once, whichever thread comes
+// first), by which the range kernel leaves out the cells out of an atom's reach.
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -69,8 +72,10 @@ class DenseBackend final : public Backend {
     double neighbours() const override { return double(cells_.stencil().size()); }
 
     void visit(std::size_t begin, std::size_t end, CandidateScanner& scan) const override {
-        std::call_once(*boxes_once_, [&] { build_boxes(scan); });
-        scan.prune_by_cells(boxes_.data(), starts_.data(), bound_);
+        if (!wraps_) { // (a wrapping stencil's pieces go through ranges(), unpruned)
+            std::call_once(*boxes_once_, [&] { build_boxes(scan); });
+            scan.prune_by_cells(boxes_.data(), starts_.data(), bound_);
+        }
         const std::array<int, 3>& n = cells_.grid().dims();
         const bool periodic_c = cells_.grid().periodicity()[2];
         std::vector<CandidateRange> pieces; // of one home cell's rows

@@ -148,6 +148,63 @@ std::uint32_t scan_generic(const RangeScanInput& in, std::uint32_t a0, std::uint
 
 #ifdef TRICELL_HAVE_AVX_RANGE_KERNELS
 
+// max(lower - t, t - upper, 0) per lane.
+__attribute__((target("avx2"))) inline __m256d gap(__m256d t, double lower, double upper) {
+    return _mm256_max_pd(_mm256_max_pd(_mm256_sub_pd(_mm256_set1_pd(lower), t),
+                                       _mm256_sub_pd(t, _mm256_set1_pd(upper))),
+                         _mm256_setzero_pd());
+}
+
+// trim_scalar() with four atoms in the lanes of each half: the same terms, so the same spans.
+__attribute__((target("avx2"))) void trim_avx2(const RangeScanInput& in, std::uint32_t a0,
+                                               std::uint32_t a1, const CandidateRange* ranges,
+                                               std::uint32_t count, Spans& spans) {
+    // The atoms, eight lanes (those past a1 repeat the last: their spans go unread).
+    alignas(32) double ax[8], ay[8], az[8];
+    for (std::uint32_t g = 0; g < 8; ++g) {
+        const std::uint32_t a = std::min(a0 + g, a1 - 1);
+        ax[g] = in.x[a], ay[g] = in.y[a], az[g] = in.z[a];
+    }
+    const __m256i bit = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+    for (std::uint32_t q = 0; q < std::min(count, pruned_ranges); ++q) {
+        const CandidateRange& r = ranges[q];
+        const __m256d vx = _mm256_set1_pd(r.v[0]), vy = _mm256_set1_pd(r.v[1]),
+                      vz = _mm256_set1_pd(r.v[2]);
+        __m256d t[2][3];
+        for (int h = 0; h < 2; ++h) {
+            t[h][0] = _mm256_sub_pd(_mm256_load_pd(ax + 4 * h), vx);
+            t[h][1] = _mm256_sub_pd(_mm256_load_pd(ay + 4 * h), vy);
+            t[h][2] = _mm256_sub_pd(_mm256_load_pd(az + 4 * h), vz);
+        }
+        const __m256d reach = _mm256_set1_pd(r.reach_sq);
+        __m256i b = _mm256_set1_epi32(std::int32_t(r.b1)),
+                e = _mm256_set1_epi32(std::int32_t(r.b0));
+        __m256i found = _mm256_setzero_si256();
+        for (std::uint32_t c = r.c0; c <= r.c1; ++c) {
+            const double* box = in.boxes + 6 * std::size_t(c);
+            int bits = 0;
+            for (int h = 0; h < 2; ++h) {
+                const __m256d gx = gap(t[h][0], box[0], box[3]);
+                const __m256d gy = gap(t[h][1], box[1], box[4]);
+                const __m256d gz = gap(t[h][2], box[2], box[5]);
+                const __m256d g_sq =
+                    _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(gx, gx), _mm256_mul_pd(gy, gy)),
+                                  _mm256_mul_pd(gz, gz));
+                bits |= _mm256_movemask_pd(_mm256_cmp_pd(g_sq, reach, _CMP_LT_OQ)) << (4 * h);
+            }
+            // the lanes near the box, as 32-bit masks
+            const __m256i near =
+                _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(bits), bit), bit);
+            b = _mm256_blendv_epi8(b, _mm256_set1_epi32(std::int32_t(in.cell_start[c])),
+                                   _mm256_andnot_si256(found, near));
+            e = _mm256_blendv_epi8(e, _mm256_set1_epi32(std::int32_t(in.cell_start[c + 1])), near);
+            found = _mm256_or_si256(found, near);
+        }
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(spans.b[q]), b);
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(spans.e[q]), e);
+    }
+}
+
 // AVX2: four candidates at a time, the hits of a group stored one by one through store_hit().
 __attribute__((target("avx2"))) std::uint32_t scan_avx2(const RangeScanInput& in, std::uint32_t a0,
                                                         std::uint32_t a1,
@@ -157,7 +214,7 @@ __attribute__((target("avx2"))) std::uint32_t scan_avx2(const RangeScanInput& in
     const __m256d vcut = _mm256_set1_pd(in.cutoff_sq);
     Spans spans;
     if (in.boxes != nullptr) {
-        trim_scalar(in, a0, a1, ranges, count, spans);
+        trim_avx2(in, a0, a1, ranges, count, spans);
     }
     std::uint32_t n = 0;
     for (std::uint32_t a = a0; a < a1; ++a) {

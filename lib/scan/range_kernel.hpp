@@ -8,6 +8,16 @@
 // the cutoff pay, whose rows hold a few atoms each but leave fewer candidates
 // (grid_cells_per_cutoff in policy/cost_model.hpp).
 //
+// Bounding-box pruning, as in the cluster-pair search of Pall & Hess (2013) with the cells as
+// clusters: where the backend gives the bounding box of each cell's atoms, each atom of the home
+// cell is first tested against the boxes of the cells of every range (the atoms in the lanes,
+// one box at a time), and tests only the cells from the first to the last whose box, moved by
+// the range's shift, comes within the cutoff (plus a margin far wider than any rounding). The
+// cells left out hold no pair of that atom, so the exact test still decides every pair, the
+// pairs come in the same order and only the candidates change: on diamond Si (rc 5, cells of
+// one cutoff) 6.5 per pair become 3.4, whose lattice leaves the boxes well inside their cells;
+// on random atoms 7.3 become 6.5.
+//
 // The arithmetic is distance_kernel.hpp's, term for term: D = (x_b - x_a) + T, d^2 = dx dx +
 // dy dy + dz dz without fused multiply-adds, d = sqrt(d^2), a zero component of D stored as +0,
 // so every version (AVX-512, AVX2, portable) and the general scan give the same bits.
