@@ -1,9 +1,9 @@
 #include "scan/range_kernel.hpp"
 
-#include "scan/distance_kernel.hpp"
-
 #include <algorithm>
 #include <cmath>
+
+#include "scan/distance_kernel.hpp"
 
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
 #define TRICELL_HAVE_AVX_RANGE_KERNELS 1
@@ -59,8 +59,8 @@ struct Spans {
     std::uint32_t e[pruned_ranges][kernel_group];
 };
 
-// Whether the box lower (lx, ly, lz), upper (ux, uy, uz) lies at least sqrt(reach_sq) from the
-// point (tx, ty, tz). The vector version below computes the same terms.
+// Whether the box (lower x, y, z, upper x, y, z) lies at least sqrt(reach_sq) from the point
+// (tx, ty, tz). The vector versions below compute the same terms.
 inline bool beyond(const double* box, double tx, double ty, double tz, double reach_sq) {
     const double gx = std::max(std::max(box[0] - tx, tx - box[3]), 0.0);
     const double gy = std::max(std::max(box[1] - ty, ty - box[4]), 0.0);
@@ -91,14 +91,15 @@ void trim_scalar(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
     }
 }
 
-// The candidates [b, e) of range q (ranges[q] = r) that atom a tests (b >= e: none): a half list
-// takes only b > a in the own range, and with cell boxes the cells at either end of the range
-// whose boxes lie beyond the cutoff's reach are left out (they hold no pair of a, so the pairs
-// and their order stay the same).
+// Candidates [b, e) of a range (b >= e: none).
 struct Candidates {
     std::uint32_t b, e;
 };
 
+// The candidates of range q (ranges[q] = r) that atom a tests: a half list takes only b > a in
+// the own range, and with cell boxes the cells at either end of the range whose boxes lie beyond
+// the cutoff's reach are left out (they hold no pair of a, so the pairs and their order stay the
+// same).
 inline Candidates candidates(const RangeScanInput& in, std::uint32_t a, std::uint32_t a0,
                              const CandidateRange& r, std::uint32_t q, const Spans& spans) {
     Candidates c{r.b0, r.b1};
