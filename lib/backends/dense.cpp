@@ -56,6 +56,10 @@ class DenseBackend final : public Backend {
         for (std::size_t k = 0; k < 3; ++k) {
             wraps_ = wraps_ || 2 * reach_[k] + 1 > dims[k];
         }
+        // Boxes only for a grid of more atoms than cells (a sparse one, a gas or a droplet in
+        // vacuum, gains little from them and pays a box per empty cell) whose stencil does not
+        // wrap (its pieces go through the scanner's ranges(), unpruned).
+        boxes_pay_ = !wraps_ && n >= cells_.grid().cell_count();
         boxes_once_ = std::make_unique<std::once_flag>();
     }
 
@@ -72,7 +76,7 @@ class DenseBackend final : public Backend {
     double neighbours() const override { return double(cells_.stencil().size()); }
 
     void visit(std::size_t begin, std::size_t end, CandidateScanner& scan) const override {
-        if (!wraps_) { // (a wrapping stencil's pieces go through ranges(), unpruned)
+        if (boxes_pay_) {
             std::call_once(*boxes_once_, [&] { build_boxes(scan); });
             scan.prune_by_cells(boxes_.data(), starts_.data(), bound_);
         }
@@ -223,6 +227,7 @@ class DenseBackend final : public Backend {
     std::vector<InnerRow> inner_rows_;
     std::array<int, 3> reach_{};
     bool wraps_ = false; ///< the stencil reaches round a periodic axis onto its own cells
+    bool boxes_pay_ = false;
     mutable std::unique_ptr<std::once_flag> boxes_once_;
     mutable std::vector<double> boxes_;
     mutable std::vector<std::uint32_t> starts_;

@@ -52,12 +52,32 @@ inline void store_hit(const RangeScanInput& in, std::uint32_t a, std::uint32_t b
 // few dozen); any further ones are tested whole.
 constexpr std::uint32_t pruned_ranges = 64;
 
+// The candidates per box of a call (summed over its atoms) from which the boxes pay.
+constexpr std::uint64_t prune_threshold = 8;
+
 // What each atom a0 + g of a call tests of range q < pruned_ranges: [b[q][g], e[q][g]), its
 // cells from the first to the last whose box comes within reach of the atom (b >= e: none).
 struct Spans {
     std::uint32_t b[pruned_ranges][kernel_group];
     std::uint32_t e[pruned_ranges][kernel_group];
 };
+
+// Whether the cell boxes pay for a call: a box test costs about what a block of candidates costs
+// one atom and leaves out only some candidates, so a call prunes only where its atoms meet at
+// least prune_threshold candidates per box (a few atoms of a sparse region against rows of an
+// atom or two would pay more than they save).
+inline bool worth_pruning(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
+                          const CandidateRange* ranges, std::uint32_t count) {
+    if (in.boxes == nullptr) {
+        return false;
+    }
+    std::uint64_t candidates = 0, boxes = 0;
+    for (std::uint32_t q = 0; q < std::min(count, pruned_ranges); ++q) {
+        candidates += ranges[q].b1 - ranges[q].b0;
+        boxes += ranges[q].c1 - ranges[q].c0 + 1;
+    }
+    return std::uint64_t(a1 - a0) * candidates >= prune_threshold * boxes;
+}
 
 // Whether the box (lower x, y, z, upper x, y, z) lies at least sqrt(reach_sq) from the point
 // (tx, ty, tz). The vector versions below compute the same terms.
@@ -101,9 +121,10 @@ struct Candidates {
 // the cutoff's reach are left out (they hold no pair of a, so the pairs and their order stay the
 // same).
 inline Candidates candidates(const RangeScanInput& in, std::uint32_t a, std::uint32_t a0,
-                             const CandidateRange& r, std::uint32_t q, const Spans& spans) {
+                             const CandidateRange& r, std::uint32_t q, bool pruned,
+                             const Spans& spans) {
     Candidates c{r.b0, r.b1};
-    if (in.boxes != nullptr && q < pruned_ranges) {
+    if (pruned && q < pruned_ranges) {
         c = Candidates{spans.b[q][a - a0], spans.e[q][a - a0]};
     }
     if (r.own && in.half) {
@@ -133,13 +154,14 @@ std::uint32_t scan_generic(const RangeScanInput& in, std::uint32_t a0, std::uint
                            const CandidateRange* ranges, std::uint32_t count, const PairSlots& out,
                            std::uint64_t& tests) {
     Spans spans;
-    if (in.boxes != nullptr) {
+    const bool pruned = worth_pruning(in, a0, a1, ranges, count);
+    if (pruned) {
         trim_scalar(in, a0, a1, ranges, count, spans);
     }
     std::uint32_t n = 0;
     for (std::uint32_t a = a0; a < a1; ++a) {
         for (std::uint32_t q = 0; q < count; ++q) {
-            const Candidates c = candidates(in, a, a0, ranges[q], q, spans);
+            const Candidates c = candidates(in, a, a0, ranges[q], q, pruned, spans);
             tests += c.b < c.e ? c.e - c.b : 0;
             n = scan_scalar(in, a, c.b, c.e, ranges[q], out, n);
         }
@@ -214,7 +236,8 @@ __attribute__((target("avx2"))) std::uint32_t scan_avx2(const RangeScanInput& in
                                                         std::uint64_t& tests) {
     const __m256d vcut = _mm256_set1_pd(in.cutoff_sq);
     Spans spans;
-    if (in.boxes != nullptr) {
+    const bool pruned = worth_pruning(in, a0, a1, ranges, count);
+    if (pruned) {
         trim_avx2(in, a0, a1, ranges, count, spans);
     }
     std::uint32_t n = 0;
@@ -225,7 +248,7 @@ __attribute__((target("avx2"))) std::uint32_t scan_avx2(const RangeScanInput& in
             const CandidateRange& r = ranges[q];
             const __m256d vvx = _mm256_set1_pd(r.v[0]), vvy = _mm256_set1_pd(r.v[1]),
                           vvz = _mm256_set1_pd(r.v[2]);
-            const Candidates c = candidates(in, a, a0, r, q, spans);
+            const Candidates c = candidates(in, a, a0, r, q, pruned, spans);
             tests += c.b < c.e ? c.e - c.b : 0;
             std::uint32_t b = c.b;
             for (; b + 4 <= c.e; b += 4) {
@@ -351,7 +374,8 @@ scan_avx512(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
     const bool squares = out.squares;
     const __m512d vcut = _mm512_set1_pd(cutoff_sq);
     Spans spans;
-    if (in.boxes != nullptr) {
+    const bool pruned = worth_pruning(in, a0, a1, ranges, count);
+    if (pruned) {
         trim_avx512(in, a0, a1, ranges, count, spans);
     }
     const __m256i lanes = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
@@ -362,7 +386,7 @@ scan_avx512(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
         const __m256i vi = _mm256_set1_epi32(std::int32_t(index[a]));
         for (std::uint32_t q = 0; q < count; ++q) {
             const CandidateRange& r = ranges[q];
-            const Candidates span = candidates(in, a, a0, r, q, spans);
+            const Candidates span = candidates(in, a, a0, r, q, pruned, spans);
             if (span.b >= span.e) {
                 continue;
             }

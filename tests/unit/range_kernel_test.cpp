@@ -148,7 +148,8 @@ CellCase random_cell_case(std::mt19937_64& rng, int trial) {
     const bool grid = trial % 3 == 0;
     cc.starts.push_back(0);
     for (std::uint32_t k = 0; k < cells; ++k) {
-        const std::uint32_t count = std::uint32_t(rng() % 6);
+        // up to 11 atoms: enough that the kernel finds the boxes worth testing in most calls
+        const std::uint32_t count = std::uint32_t(rng() % 12);
         for (std::uint32_t m = 0; m < count; ++m) {
             double p[3] = {double(k) + u(rng), u(rng), u(rng)};
             for (double& v : p) {
@@ -285,6 +286,6 @@ TEST(RangeKernel, CellBoxesPruneNoPair) {
             pruned += version.scan == versions.back().scan ? tests : 0;
         }
     }
-    EXPECT_LT(double(pruned), 0.8 * double(whole));
+    EXPECT_LT(double(pruned), 0.5 * double(whole));
     EXPECT_GT(pruned, 0u);
 }
