@@ -135,6 +135,23 @@ double estimated_system_pairs(const Box& box, std::size_t atoms, const Eigen::Ve
     return std::isnan(pairs) ? 0 : pairs;
 }
 
+// The most pairs a list of `query_atoms` centres among `atoms` can hold within `search_radius`:
+// each centre pairs with every atom in every image the cutoff reaches. Wrapped, two atoms'
+// fractional separation along a periodic axis of width w is below 1 in size, so at most
+// ceil(2 r / w) + 1 images are within r along it; an open axis has one. Infinite when that
+// count overflows. Only reserves are capped by it: a huge cutoff over a few atoms, or an open
+// molecule, never reserves room for millions of pairs.
+double possible_pairs(const Box& box, std::size_t atoms, std::size_t query_atoms,
+                      double search_radius, bool half) {
+    double images = 1;
+    for (int k = 0; k < 3; ++k) {
+        if (box.periodic(k)) {
+            images *= std::ceil(2 * search_radius / box.perpendicular_widths()[k]) + 1;
+        }
+    }
+    return double(query_atoms) * double(atoms) * images * (half ? 0.5 : 1.0);
+}
+
 // Pairs to reserve room for when `expected` are expected: a tenth more, at most `limit` (the
 // pair limit), or 2^24 pairs when there is no limit (0).
 std::size_t pair_room(double expected, std::size_t limit = 0) {
@@ -145,9 +162,10 @@ std::size_t pair_room(double expected, std::size_t limit = 0) {
 }
 
 // The batches of `units` units with `expected[u]` expected pairs and `work[u]` occupancy work
-// each, for `threads` threads (at least four batches per thread).
+// each, for `threads` threads (at least four batches per thread), of a list that holds at most
+// `most_pairs`.
 BatchPlan plan_batches(const std::vector<double>& work, const std::vector<double>& expected,
-                       std::size_t threads) {
+                       std::size_t threads, double most_pairs) {
     // About batch_pairs pairs a batch: with i, j, S, d about 230 KB of columns, which stay in
     // the core's L2 until they are copied out.
     constexpr double batch_pairs = 8192;
@@ -165,7 +183,7 @@ BatchPlan plan_batches(const std::vector<double>& work, const std::vector<double
         for (std::size_t u = plan.bounds[b]; u < plan.bounds[b + 1]; ++u) {
             e += expected[u];
         }
-        plan.reserve[b] = pair_room(e);
+        plan.reserve[b] = pair_room(e <= most_pairs ? e : most_pairs);
     }
     return plan;
 }
@@ -200,9 +218,11 @@ BuildPlan plan_build(const NeighborOptions& options, const Box& frame,
     plan.atoms = n;
     plan.cell_cap = cell_cap(options, n);
     // A subset search's pairs are estimated as the query's share of the full list's.
-    plan.estimated_pairs = estimated_system_pairs(frame, n, wrapped.lower, wrapped.upper, cutoff,
-                                                  options.half && !subset) *
-                           (double(query_atoms) / double(n));
+    plan.most_pairs = possible_pairs(frame, n, query_atoms, search_radius, options.half && !subset);
+    plan.estimated_pairs = std::min(estimated_system_pairs(frame, n, wrapped.lower, wrapped.upper,
+                                                           cutoff, options.half && !subset) *
+                                        (double(query_atoms) / double(n)),
+                                    plan.most_pairs);
     // Neighbours per atom: of the full list's pairs (a subset's share over its query atoms).
     const double neighbours =
         plan.estimated_pairs / double(query_atoms) * (options.half && !subset ? 2.0 : 1.0);
@@ -245,6 +265,9 @@ ComputePlan plan_compute(const NeighborOptions& options, const ComputeInput& inp
                                              input.occupancy.volume[u] * input.box_volume, sphere);
         total += expected[u];
     }
+    if (!(total <= input.most_pairs)) { // also when the occupancy gives no estimate (NaN)
+        total = input.most_pairs;
+    }
     plan.room = pair_room(total, limits.pairs() == 0 ? 0 : limits.pairs() + input.claim);
     if (plan.threads > 1) {
         std::vector<double> work(units);
@@ -252,7 +275,7 @@ ComputePlan plan_compute(const NeighborOptions& options, const ComputeInput& inp
         for (std::size_t u = 0; u < units; ++u) {
             work[u] = occupancy_work(input.occupancy.atoms[u], neighbours);
         }
-        plan.batches = plan_batches(work, expected, plan.threads);
+        plan.batches = plan_batches(work, expected, plan.threads, input.most_pairs);
     }
     return plan;
 }

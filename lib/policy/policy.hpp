@@ -51,8 +51,9 @@ std::size_t build_threads(const NeighborOptions& options, std::size_t atoms);
 
 /// How build() runs.
 struct BuildPlan {
-    std::size_t threads = 1;                      ///< of the per-atom phases (build_threads())
-    double estimated_pairs = 0;                   ///< of the list, from the density
+    std::size_t threads = 1;    ///< of the per-atom phases (build_threads())
+    double estimated_pairs = 0; ///< of the list, from the density
+    double most_pairs = 0; ///< the list can hold at most (possible_pairs()); caps every reserve
     SearchBackend backend = SearchBackend::dense; ///< never `automatic`
     std::size_t cell_cap = 0;                     ///< most cells of the dense and linked grids
     double cells_per_cutoff = 1;                  ///< of the grids (the option, or chosen)
@@ -86,6 +87,7 @@ constexpr std::size_t max_pending_batches = 16;
 /// What a compute plan is made from: the built search and its backend's units.
 struct ComputeInput {
     double estimated_pairs = 0; ///< of the list (BuildPlan::estimated_pairs)
+    double most_pairs = 0;      ///< BuildPlan::most_pairs
     double box_volume = 0;      ///< of the search frame
     double max_cutoff = 0;      ///< the largest cutoff
     std::size_t atoms = 0;

@@ -67,6 +67,7 @@ void NeighborSearch::build(const Box& caller_box, PointsView positions,
     s.frame = detail::SearchFrame(caller_box, options.reduce_cell);
     s.atom_count = n;
     s.estimated_pairs = 0;
+    s.most_pairs = 0;
     const double cutoff = s.rule.max_cutoff();
     // At most the largest double: the margin overflows a finite cutoff near it to inf, which the
     // grid refuses and the other backends accept.
@@ -86,6 +87,7 @@ void NeighborSearch::build(const Box& caller_box, PointsView positions,
         detail::plan_build(options, s.frame.box(), wrapped, cutoff, s.search_radius,
                            query.empty() ? n : s.query_atoms);
     s.estimated_pairs = plan.estimated_pairs;
+    s.most_pairs = plan.most_pairs;
     detail::ListLimits(options, n).check_estimate(s.estimated_pairs, cutoff);
 
     s.backend = &s.pool.get(plan.backend);
@@ -121,6 +123,7 @@ void NeighborSearch::compute(NeighborList& out) const {
     const detail::ListLimits limits(s.options, s.atom_count);
     detail::ComputeInput input;
     input.estimated_pairs = s.estimated_pairs;
+    input.most_pairs = s.most_pairs;
     input.box_volume = s.frame.box().volume();
     input.max_cutoff = s.rule.max_cutoff();
     input.atoms = s.atom_count;

@@ -18,6 +18,7 @@ struct SearchState {
     SearchFrame frame;
     double search_radius = 0;
     double estimated_pairs = 0;
+    double most_pairs = 0; ///< BuildPlan::most_pairs
     std::size_t atom_count = 0;
     std::size_t query_atoms = 0; ///< a subset search's query atoms (0: the ordinary search)
     CutoffRule rule;

@@ -249,3 +249,43 @@ TEST(MaxBytes, ThePairLimitIsNamedWhenBothArePassedAndZeroLiftsTheByteLimit) {
               "y, more than max_bytes = 7 (6.52e-09 GiB); raise NeighborOptions::max_bytes to "
               "allow it (0 = no limit)");
 }
+
+TEST(ListRoom, NeverMoreThanTheListCanHold) {
+    // The room a list starts with is capped by the pairs it can hold at all: a centre pairs with
+    // every atom in each image the cutoff reaches, ceil(2 r / w) + 1 along a periodic axis of
+    // width w, one along an open axis. An open molecule with a cutoff near the largest double
+    // once reserved room for hundreds of millions of pairs (gigabytes of address space a call).
+    std::mt19937_64 rng(41);
+    std::uniform_real_distribution<double> u(0, 1);
+    for (int trial = 0; trial < 200; ++trial) {
+        SCOPED_TRACE(trial);
+        const tricell::Periodicity pbc{{u(rng) < 0.5, u(rng) < 0.5, u(rng) < 0.5}};
+        const Box box =
+            Box::from_parameters(2 + 3 * u(rng), 2 + 3 * u(rng), 2 + 3 * u(rng), 75 + 30 * u(rng),
+                                 75 + 30 * u(rng), 75 + 30 * u(rng), pbc);
+        const std::size_t n = 1 + std::size_t(6 * u(rng));
+        std::vector<Eigen::Vector3d> x(n);
+        for (Eigen::Vector3d& p : x) {
+            p = box.matrix() * Eigen::Vector3d(u(rng), u(rng), u(rng));
+        }
+        NeighborOptions o;
+        o.cutoff = trial % 4 == 0 ? 1e300 : 0.5 + 8 * u(rng);
+        o.half = trial % 3 == 0;
+        o.threads = 1 + trial % 2;
+        o.reduce_cell = false; // so the search's cell is this one
+        if (pbc.axes[0] || pbc.axes[1] || pbc.axes[2]) {
+            o.cutoff = std::min(o.cutoff, 9.0); // periodic images stay countable
+        }
+        double images = 1;
+        for (int k = 0; k < 3; ++k) {
+            if (pbc.axes[k]) {
+                images *= std::ceil(2 * o.cutoff / box.perpendicular_widths()[k]) + 1;
+            }
+        }
+        const double most = double(n) * double(n) * images;
+        NeighborList list;
+        tricell::compute_neighbors(box, x, o, list);
+        EXPECT_LE(double(list.size()), most);
+        EXPECT_LE(double(list.i().capacity()), 1.1 * most + 1024 + 4096) << "cutoff " << o.cutoff;
+    }
+}
