@@ -643,3 +643,81 @@ TEST(NeighborSearch, ShearedBoxUsesItsReducedTwin) {
     EXPECT_TRUE(search.info().reduced_frame);
     EXPECT_EQ(search.info().cells, (std::array<int, 3>{{3, 3, 3}})); // the cube's grid
 }
+
+// The dense grid's cell boxes (each atom tests only the cells of a stencil row whose atoms' box
+// comes within the cutoff) change no pair and no bit: crowded triclinic and strongly skewed
+// systems of 3 to 6 cells per axis and about 8 atoms per cell (where the boxes are built and
+// tested), some atoms far outside the box (images), some on faces and corners, some coincident,
+// full and half lists on 1 and 2 threads and cells of one and of half a cutoff (whose stencil
+// may wrap round a small grid), each against the linked cells (which test every candidate of
+// the same stencil) bit for bit and, every third case, against the brute-force oracle; the
+// dense grid tests fewer candidates than the linked cells over the cases.
+TEST(NeighborSearch, CellBoxesChangeNoPair) {
+    std::uint64_t pruned = 0, whole = 0;
+    const std::uint64_t cases = std::min<std::uint64_t>(case_count / 10, 60);
+    for (std::uint64_t seed = 0; seed < cases; ++seed) {
+        std::mt19937_64 rng(seed + 4100);
+        std::uniform_real_distribution<double> unit(0, 1);
+        RandomSystem sys;
+        sys.h = tricell::testing::random_box_matrix(rng, 8, 16, seed % 3 == 0 ? 2.0 : 0.5);
+        sys.pbc = tricell::Periodicity::all();
+        const Box box = Box::from_columns(sys.h, tricell::Periodicity::all());
+        const int cells = 3 + int(rng() % 4);
+        sys.cutoff = box.perpendicular_widths().minCoeff() / (cells + 0.2 * unit(rng));
+        const double special[] = {0.0, 0.5, 1.0, 0.25};
+        const std::size_t n = 8 * std::size_t(cells * cells * cells);
+        for (std::size_t k = 0; k < n; ++k) {
+            Eigen::Vector3d s(unit(rng), unit(rng), unit(rng));
+            if (rng() % 8 == 0) {
+                s[int(rng() % 3)] = special[rng() % 4];
+            }
+            if (rng() % 8 == 0) {
+                s[int(rng() % 3)] += std::round(200 * unit(rng) - 100);
+            }
+            sys.positions.push_back(k > 0 && rng() % 20 == 0 ? sys.positions[rng() % k]
+                                                             : Eigen::Vector3d(sys.h * s));
+        }
+        SCOPED_TRACE(testing::Message() << "seed " << seed << ", N " << n << ", cutoff "
+                                        << sys.cutoff);
+        NeighborOptions o;
+        o.cutoff = sys.cutoff;
+        o.quantities.vectors = true;
+        o.sorted = true;
+        o.cells_per_cutoff = 1 + double(seed % 2);
+        o.threads = 1 + int(seed % 4 == 3);
+        NeighborOptions linked = o;
+        o.backend = SearchBackend::dense;
+        linked.backend = SearchBackend::linked;
+        for (const bool half : {false, true}) {
+            const NeighborList expected = run(sys, linked, half);
+            const NeighborList actual = run(sys, o, half);
+            ASSERT_EQ(expected.i(), actual.i());
+            ASSERT_EQ(expected.j(), actual.j());
+            ASSERT_EQ(expected.shifts(), actual.shifts());
+            ASSERT_EQ(expected.distances(), actual.distances()); // bit for bit
+            ASSERT_EQ(expected.vectors(), actual.vectors());
+            if (seed % 3 == 0) {
+                PairMap oracle =
+                    tricell::testing::brute_force_pairs(sys.box(), sys.positions, sys.cutoff);
+                if (half) {
+                    oracle = tricell::testing::canonical_half(oracle);
+                }
+                expect_same_pairs(oracle, tricell::testing::to_map(actual), sys.cutoff,
+                                  tolerance(sys), "dense vs oracle");
+            }
+            const auto tests = [&](NeighborOptions options) {
+                options.half = half;
+                tricell::NeighborSearch search;
+                search.build(sys.box(), sys.positions, options);
+                const tricell::UnitWork work = search.unit_work();
+                return std::accumulate(work.measured.begin(), work.measured.end(), 0.0);
+            };
+            pruned += std::uint64_t(tests(o));
+            whole += std::uint64_t(tests(linked));
+        }
+        if (::testing::Test::HasFailure()) {
+            return;
+        }
+    }
+    EXPECT_LT(double(pruned), 0.9 * double(whole));
+}
