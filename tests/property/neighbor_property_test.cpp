@@ -677,8 +677,8 @@ TEST(NeighborSearch, CellBoxesChangeNoPair) {
             sys.positions.push_back(k > 0 && rng() % 20 == 0 ? sys.positions[rng() % k]
                                                              : Eigen::Vector3d(sys.h * s));
         }
-        SCOPED_TRACE(testing::Message() << "seed " << seed << ", N " << n << ", cutoff "
-                                        << sys.cutoff);
+        SCOPED_TRACE(testing::Message()
+                     << "seed " << seed << ", N " << n << ", cutoff " << sys.cutoff);
         NeighborOptions o;
         o.cutoff = sys.cutoff;
         o.quantities.vectors = true;
