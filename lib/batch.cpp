@@ -9,18 +9,19 @@
 #include "detail/parallel.hpp"
 #include "policy/list_limits.hpp"
 #include "policy/policy.hpp"
+#include "search/search_state.hpp"
 #include "tricell/error.hpp"
 
 namespace tricell {
 
 namespace detail {
 
-// One thread's state: a search object and a scratch list reused from structure to structure
-// (and from call to call), the columns its run of structures is appended to (thread 0 appends
-// straight to the output), and per structure of the run its pair count and, when grouped or sorted,
-// the per-atom offsets relative to the structure's first pair.
+// One thread's state: a search reused from structure to structure (and from call to call), a
+// scratch list for ordered lists, the columns its run of structures is appended to (thread 0
+// appends straight to the output), and per structure of the run its pair count and, when
+// grouped or sorted, the per-atom offsets relative to the structure's first pair.
 struct BatchWorker {
-    NeighborSearch search;
+    SearchState search;
     NeighborList scratch;
     PairColumns columns;
     std::vector<std::size_t> pairs;
@@ -61,6 +62,14 @@ void append(PairArray<std::uint32_t>& to, const PairArray<std::uint32_t>& from,
     }
 }
 
+// Adds `shift` to i and j of the pairs from `start` on.
+void shift_indices(PairColumns& c, std::size_t start, std::uint32_t shift) {
+    for (std::size_t k = start; k < c.size(); ++k) {
+        c.i[k] += shift;
+        c.j[k] += shift;
+    }
+}
+
 using detail::run_in_threads; // detail/parallel.hpp
 
 } // namespace
@@ -96,8 +105,7 @@ void compute_neighbors_batch(const BatchStructure* structures, std::size_t count
                                       std::numeric_limits<std::uint32_t>::max(),
                                       " atoms, but the batch has ", all_atoms);
     }
-    const detail::ListLimits limits(options, all_atoms);
-    const char* const batch_over_limit = "the batch has too many pairs in total";
+    const detail::ListLimits limits(options, all_atoms, "the batch has too many pairs in total");
     std::vector<double> cost(count);
     for (std::size_t s = 0; s < count; ++s) {
         cost[s] =
@@ -108,6 +116,11 @@ void compute_neighbors_batch(const BatchStructure* structures, std::size_t count
 
     NeighborOptions one = options; // each structure's search runs on its worker's thread
     one.threads = 1;
+    // An unordered list is searched straight into the batch's columns; a grouped, sorted or
+    // nearest list into a scratch list that is then appended.
+    const bool in_place = !options.with_offsets();
+    // A uniform cutoff's rule does not depend on the structure: set once per worker.
+    const bool rule_once = !options.variable_cutoff();
     std::vector<detail::BatchWorker> workers;
     workers.swap(out.workers_);
     workers.resize(runs);
@@ -124,6 +137,10 @@ void compute_neighbors_batch(const BatchStructure* structures, std::size_t count
         columns.clear();
         w.pairs.clear();
         w.offsets.clear();
+        w.search.options = one;
+        if (rule_once) {
+            w.search.rule.set(one, 0);
+        }
         // The first atom of the run's first structure among all atoms of the batch.
         std::size_t first_atom = 0;
         for (std::size_t s = 0; s < bounds[t]; ++s) {
@@ -136,20 +153,30 @@ void compute_neighbors_batch(const BatchStructure* structures, std::size_t count
                 return;
             }
             try {
-                w.search.build(structures[s].box, structures[s].positions, one);
-                w.search.compute(w.scratch);
-                const NeighborList& list = w.scratch;
-                if (limits.pairs() != 0 && columns.size() + list.size() > limits.pairs()) {
-                    limits.fail_size(columns.size() + list.size(), batch_over_limit);
+                detail::build_search(w.search, structures[s].box, structures[s].positions, 1,
+                                     rule_once);
+                const std::size_t start = columns.size();
+                if (in_place) {
+                    detail::append_pairs(w.search, columns, limits);
+                    if (atom_shift != 0) {
+                        shift_indices(columns, start, atom_shift);
+                    }
+                } else {
+                    w.scratch.clear();
+                    detail::compute_list(w.search, w.scratch);
+                    const NeighborList& list = w.scratch;
+                    if (limits.pairs() != 0 && columns.size() + list.size() > limits.pairs()) {
+                        limits.fail_size(columns.size() + list.size());
+                    }
+                    append(columns.i, list.i(), atom_shift);
+                    append(columns.j, list.j(), atom_shift);
+                    append(columns.shifts, list.shifts());
+                    append(columns.distances, list.distances());
+                    append(columns.vectors, list.vectors());
+                    w.offsets.insert(w.offsets.end(), list.offsets().begin(),
+                                     list.offsets().end() - (list.offsets().empty() ? 0 : 1));
                 }
-                append(columns.i, list.i(), atom_shift);
-                append(columns.j, list.j(), atom_shift);
-                append(columns.shifts, list.shifts());
-                append(columns.distances, list.distances());
-                append(columns.vectors, list.vectors());
-                w.pairs.push_back(list.size());
-                w.offsets.insert(w.offsets.end(), list.offsets().begin(),
-                                 list.offsets().end() - (list.offsets().empty() ? 0 : 1));
+                w.pairs.push_back(columns.size() - start);
             } catch (...) {
                 try {
                     detail::rethrow_for_structure(s);
@@ -188,7 +215,7 @@ void compute_neighbors_batch(const BatchStructure* structures, std::size_t count
             out.atom_offsets_[s + 1] = out.atom_offsets_[s] + structures[s].positions.size();
         }
         if (limits.pairs() != 0 && total > limits.pairs()) {
-            limits.fail_size(total, batch_over_limit);
+            limits.fail_size(total);
         }
 
         // Join the other runs' columns after run 0's, each run copied by its own thread.

@@ -14,8 +14,10 @@
 // Threads work across structures, not inside one: the structures are cut into contiguous runs
 // of about equal estimated cost (a fixed cost per call, one per atom, and the pairs expected
 // from the density), one run per thread. Each thread searches its structures in order with a
-// search object and scratch list of its own, so nothing is allocated per structure once the
-// buffers have grown, and the runs are joined in structure order: the output is the same,
+// search object of its own, so nothing is allocated per structure once the buffers have grown,
+// and writes each structure's pairs straight after the last one's: the first run into the
+// output's columns, the others into their own, which are then copied after it in structure
+// order (a grouped or sorted list goes through a scratch list first). The output is the same,
 // array for array, whatever the thread count.
 //
 // Errors name the structure: "structure 17: position 3 is not finite (got ...)". When several

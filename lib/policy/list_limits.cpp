@@ -77,9 +77,9 @@ ListMemory list_memory(const NeighborOptions& options) {
     return m;
 }
 
-ListLimits::ListLimits(const NeighborOptions& options, std::size_t atoms)
-    : memory_(list_memory(options)), atoms_(atoms), max_pairs_(options.max_pairs),
-      max_bytes_(options.max_bytes), pairs_(options.max_pairs) {
+ListLimits::ListLimits(const NeighborOptions& options, std::size_t atoms, const char* subject)
+    : memory_(list_memory(options)), subject_(subject), atoms_(atoms),
+      max_pairs_(options.max_pairs), max_bytes_(options.max_bytes), pairs_(options.max_pairs) {
     if (max_bytes_ == 0) {
         return;
     }
@@ -109,12 +109,12 @@ void ListLimits::check_estimate(double pairs, double cutoff) const {
         pairs, bytes, max_bytes_);
 }
 
-void ListLimits::fail_size(std::size_t size, const char* subject) const {
+void ListLimits::fail_size(std::size_t size) const {
     if (max_pairs_ != 0 && size > max_pairs_) {
-        throw PairLimitError(subject, double(size), max_pairs_);
+        throw PairLimitError(subject_, double(size), max_pairs_);
     }
     const double bytes = memory_.peak(double(size), atoms_);
-    throw PairLimitError(cat(subject, ": ", size, " pairs are ", std::llround(bytes),
+    throw PairLimitError(cat(subject_, ": ", size, " pairs are ", std::llround(bytes),
                              " bytes at their peak (", memory_.rates(), ")"),
                          double(size), bytes, max_bytes_);
 }

@@ -47,7 +47,9 @@ ListMemory list_memory(const NeighborOptions& options);
 class ListLimits {
   public:
     ListLimits() = default; ///< no limit
-    ListLimits(const NeighborOptions& options, std::size_t atoms);
+    /// `subject` names the list in a refusal of its size (fail_size()).
+    ListLimits(const NeighborOptions& options, std::size_t atoms,
+               const char* subject = "the neighbour list has too many pairs");
 
     /// Refuses `pairs` pairs estimated from the density at `cutoff` past either limit before
     /// anything is allocated ("cutoff 5 would give about 1e9 pairs for 1000 atoms (estimated from
@@ -55,11 +57,8 @@ class ListLimits {
     void check_estimate(double pairs, double cutoff) const;
     /// The most pairs a list may hold (0: no limit).
     std::size_t pairs() const { return pairs_; }
-    /// The refusal of a list that reached `size` > pairs() pairs while it was written;
-    /// `subject` names the list.
-    [[noreturn]] void
-    fail_size(std::size_t size,
-              const char* subject = "the neighbour list has too many pairs") const;
+    /// The refusal of a list that reached `size` > pairs() pairs while it was written.
+    [[noreturn]] void fail_size(std::size_t size) const;
     /// Refuses to grow columns of `size` pairs when the copy would pass max_bytes.
     void check_growth(std::size_t size) const {
         if (growing_ != 0 && size > growing_) {
@@ -71,6 +70,7 @@ class ListLimits {
     [[noreturn]] void fail_growth(std::size_t size) const;
 
     ListMemory memory_;
+    const char* subject_ = "the neighbour list has too many pairs";
     std::size_t atoms_ = 0;
     std::size_t max_pairs_ = 0;
     std::size_t max_bytes_ = 0;

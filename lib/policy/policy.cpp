@@ -152,15 +152,6 @@ double possible_pairs(const Box& box, std::size_t atoms, std::size_t query_atoms
     return double(query_atoms) * double(atoms) * images * (half ? 0.5 : 1.0);
 }
 
-// Pairs to reserve room for when `expected` are expected: a tenth more, at most `limit` (the
-// pair limit), or 2^24 pairs when there is no limit (0).
-std::size_t pair_room(double expected, std::size_t limit = 0) {
-    const double cap = limit != 0 ? double(limit) : double(std::size_t(1) << 24);
-    return std::isfinite(expected) && expected * 1.1 + 1024 < cap
-               ? static_cast<std::size_t>(expected * 1.1) + 1024
-               : static_cast<std::size_t>(cap);
-}
-
 // The batches of `units` units with `expected[u]` expected pairs and `work[u]` occupancy work
 // each, for `threads` threads (at least four batches per thread), of a list that holds at most
 // `most_pairs`.
@@ -189,6 +180,13 @@ BatchPlan plan_batches(const std::vector<double>& work, const std::vector<double
 }
 
 } // namespace
+
+std::size_t pair_room(double expected, std::size_t limit) {
+    const double cap = limit != 0 ? double(limit) : double(std::size_t(1) << 24);
+    return std::isfinite(expected) && expected * 1.1 + 1024 < cap
+               ? static_cast<std::size_t>(expected * 1.1) + 1024
+               : static_cast<std::size_t>(cap);
+}
 
 std::size_t build_threads(const NeighborOptions& options, std::size_t atoms) {
     // Explicit threads from 16 atoms per thread (so that the property tests run the threaded

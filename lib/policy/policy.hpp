@@ -109,6 +109,10 @@ struct ComputePlan {
     BatchPlan batches; ///< for more than one thread
 };
 
+/// Pairs to reserve room for when `expected` are expected: a tenth more, at most `limit` (the
+/// pair limit), or 2^24 pairs when there is no limit (0).
+std::size_t pair_room(double expected, std::size_t limit = 0);
+
 ComputePlan plan_compute(const NeighborOptions& options, const ComputeInput& input,
                          const ListLimits& limits);
 

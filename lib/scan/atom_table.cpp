@@ -7,7 +7,7 @@
 namespace tricell::detail {
 
 void fill_atom_table(const Eigen::Matrix3d& h, PointsView positions,
-                     const WrappedPositions& wrapped, std::vector<std::uint32_t> order,
+                     const WrappedPositions& wrapped, std::vector<std::uint32_t>& order,
                      const std::vector<std::uint8_t>& query, std::size_t threads,
                      AtomTable& atoms) {
     const std::size_t n = positions.size();
@@ -16,7 +16,7 @@ void fill_atom_table(const Eigen::Matrix3d& h, PointsView positions,
     atoms.y.resize(n);
     atoms.z.resize(n);
     atoms.image.resize(3 * n);
-    atoms.index = std::move(order);
+    atoms.index.swap(order);
     parallel_ranges(n, threads, [&](std::size_t begin, std::size_t end, std::size_t) {
         for (std::size_t k = begin; k < end; ++k) {
             const std::size_t i = atoms.index[k];

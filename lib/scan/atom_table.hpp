@@ -34,9 +34,10 @@ struct AtomTable {
 /// Fills `atoms` in the backend's `order` (order[k]: the caller's index of the k-th atom) with
 /// the positions wrapped into the frame of box matrix `h`, x - H image (exactly x for atoms
 /// already in the box), their images and, when `query` (per caller index) is not empty, the
-/// query flags, on `threads` threads.
+/// query flags, on `threads` threads. The table takes `order` as its index, and `order` gets
+/// the table's old index buffer (its content unspecified), so that no buffer is allocated again.
 void fill_atom_table(const Eigen::Matrix3d& h, PointsView positions,
-                     const WrappedPositions& wrapped, std::vector<std::uint32_t> order,
+                     const WrappedPositions& wrapped, std::vector<std::uint32_t>& order,
                      const std::vector<std::uint8_t>& query, std::size_t threads, AtomTable& atoms);
 
 } // namespace tricell::detail

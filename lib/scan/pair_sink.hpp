@@ -155,11 +155,14 @@ class PairSink {
         }
         // The copy of a growing column must fit max_bytes. The columns hold room for one claim
         // past the pair limit (commit() refuses when it is used), so a list that reaches the
-        // limit is refused there, not by a growth it does not need.
-        limits_->check_growth(capacity_);
+        // limit is refused there, not by a growth it does not need; nor is one whose columns
+        // already hold the room (kept from an earlier, longer list), which copies nothing.
         std::size_t next = std::max({std::size_t(1024), capacity_ * 2, size_ + count});
         if (limit_ != 0) {
             next = std::max(std::min(next, limit_ + max_claim), size_ + count);
+        }
+        if (next > columns_.i->capacity()) {
+            limits_->check_growth(capacity_);
         }
         resize(next);
     }

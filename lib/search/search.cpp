@@ -53,50 +53,13 @@ void NeighborSearch::build(const Box& caller_box, PointsView positions,
     // leave the structure of one configuration with the atoms of another).
     std::unique_ptr<detail::SearchState> state = std::move(state_);
     options.validate();
-    const std::size_t n = positions.size();
-    const std::size_t threads = detail::build_threads(options, n);
+    const std::size_t threads = detail::build_threads(options, positions.size());
     const detail::TeamScope team(threads); // one team for every phase below
-    detail::check_positions(positions, threads);
     if (!state) {
         state = std::make_unique<detail::SearchState>();
     }
-    detail::SearchState& s = *state;
-    s.backend = nullptr;
-    s.rule.set(options, n);
-    s.options = options;
-    s.frame = detail::SearchFrame(caller_box, options.reduce_cell);
-    s.atom_count = n;
-    s.estimated_pairs = 0;
-    s.most_pairs = 0;
-    const double cutoff = s.rule.max_cutoff();
-    // At most the largest double: the margin overflows a finite cutoff near it to inf, which the
-    // grid refuses and the other backends accept.
-    s.search_radius = std::min(cutoff * (1 + search_margin), std::numeric_limits<double>::max());
-    // A subset search scans from the query atoms only (scan/subset_scan.hpp).
-    const std::vector<std::uint8_t> query = detail::query_flags(options, n);
-    s.query_atoms = query.empty() ? 0 : options.query->size();
-
-    detail::WrappedPositions wrapped;
-    detail::wrap_positions(s.frame, positions, threads, wrapped);
-    if (!(cutoff > 0) || n == 0 || (options.query && options.query->empty())) {
-        s.atoms = detail::AtomTable();
-        state_ = std::move(state); // no pair can count: an empty search
-        return;
-    }
-    const detail::BuildPlan plan =
-        detail::plan_build(options, s.frame.box(), wrapped, cutoff, s.search_radius,
-                           query.empty() ? n : s.query_atoms);
-    s.estimated_pairs = plan.estimated_pairs;
-    s.most_pairs = plan.most_pairs;
-    detail::ListLimits(options, n).check_estimate(s.estimated_pairs, cutoff);
-
-    s.backend = &s.pool.get(plan.backend);
-    std::vector<std::uint32_t> order;
-    s.backend->bin(detail::BinningInput{s.frame.box(), wrapped.fractional, wrapped.lower,
-                                        wrapped.upper, s.search_radius, options, plan},
-                   order);
-    detail::fill_atom_table(s.frame.box().matrix(), positions, wrapped, std::move(order), query,
-                            threads, s.atoms);
+    state->options = options;
+    detail::build_search(*state, caller_box, positions, threads);
     state_ = std::move(state);
 }
 
@@ -105,8 +68,58 @@ void NeighborSearch::compute(NeighborList& out) const {
     if (!state_) {
         detail::fail<InvalidArgument>("NeighborSearch::compute() needs a successful build() first");
     }
-    const detail::SearchState& s = *state_;
-    PairColumns& columns = detail::ListAccess::columns(out);
+    detail::compute_list(*state_, out);
+}
+
+namespace detail {
+
+void build_search(SearchState& s, const Box& caller_box, PointsView positions, std::size_t threads,
+                  bool rule_set) {
+    const NeighborOptions& options = s.options;
+    const std::size_t n = positions.size();
+    s.backend = nullptr;
+    check_positions(positions, threads);
+    if (!rule_set) {
+        s.rule.set(options, n);
+    }
+    s.frame = SearchFrame(caller_box, options.reduce_cell);
+    s.atom_count = n;
+    s.estimated_pairs = 0;
+    s.most_pairs = 0;
+    const double cutoff = s.rule.max_cutoff();
+    // At most the largest double: the margin overflows a finite cutoff near it to inf, which the
+    // grid refuses and the other backends accept.
+    s.search_radius = std::min(cutoff * (1 + search_margin), std::numeric_limits<double>::max());
+    // A subset search scans from the query atoms only (scan/subset_scan.hpp).
+    const std::vector<std::uint8_t> query = query_flags(options, n);
+    s.query_atoms = query.empty() ? 0 : options.query->size();
+
+    WrappedPositions& wrapped = s.wrapped;
+    wrap_positions(s.frame, positions, threads, wrapped);
+    if (!(cutoff > 0) || n == 0 || (options.query && options.query->empty())) {
+        s.atoms = AtomTable();
+        return; // no pair can count: an empty search
+    }
+    const BuildPlan plan = plan_build(options, s.frame.box(), wrapped, cutoff, s.search_radius,
+                                      query.empty() ? n : s.query_atoms);
+    s.estimated_pairs = plan.estimated_pairs;
+    s.most_pairs = plan.most_pairs;
+    ListLimits(options, n).check_estimate(s.estimated_pairs, cutoff);
+
+    Backend* backend = &s.pool.get(plan.backend);
+    std::vector<std::uint32_t>& order = s.order;
+    backend->bin(BinningInput{s.frame.box(), wrapped.fractional, wrapped.lower, wrapped.upper,
+                              s.search_radius, options, plan},
+                 order);
+    fill_atom_table(s.frame.box().matrix(), positions, wrapped, order, query, threads, s.atoms);
+    s.backend = backend;
+    if (n >= reuse_search_below) {
+        s.wrapped = WrappedPositions(); // a large system's are not worth keeping
+    }
+}
+
+void compute_list(const SearchState& s, NeighborList& out) {
+    PairColumns& columns = ListAccess::columns(out);
     if (!s.backend) {
         if (s.options.with_offsets()) {
             columns.offsets.assign(s.atom_count + 1, 0);
@@ -118,10 +131,10 @@ void NeighborSearch::compute(NeighborList& out) const {
     const bool keep_shifts = q.shifts || s.options.sorted || nearest; // sorting and ranking need S
     const bool keep_distances = q.distances || nearest;               // ranking needs d
     const auto columns_of = [&](PairColumns& c) {
-        return detail::stored_columns(c, keep_shifts, keep_distances, q.vectors);
+        return stored_columns(c, keep_shifts, keep_distances, q.vectors);
     };
-    const detail::ListLimits limits(s.options, s.atom_count);
-    detail::ComputeInput input;
+    const ListLimits limits(s.options, s.atom_count);
+    ComputeInput input;
     input.estimated_pairs = s.estimated_pairs;
     input.most_pairs = s.most_pairs;
     input.box_volume = s.frame.box().volume();
@@ -130,22 +143,22 @@ void NeighborSearch::compute(NeighborList& out) const {
     input.query_atoms = s.query_atoms;
     s.backend->occupancy(input.occupancy);
     input.neighbours = [&] { return s.backend->neighbours(); };
-    input.claim = detail::PairSink::max_claim;
-    const detail::ComputePlan plan = detail::plan_compute(s.options, input, limits);
-    const detail::TeamScope team(plan.threads);
+    input.claim = PairSink::max_claim;
+    const ComputePlan plan = plan_compute(s.options, input, limits);
+    const TeamScope team(plan.threads);
     try {
         if (plan.threads == 1) {
-            detail::PairSink sink(columns_of(columns), limits, plan.room);
-            detail::CandidateScanner scan = s.scanner(sink);
+            PairSink sink(columns_of(columns), limits, plan.room);
+            CandidateScanner scan = s.scanner(sink);
             s.backend->visit(0, s.backend->unit_count(), scan);
             sink.finish();
         } else {
-            const detail::BatchPlan& batches = plan.batches;
-            detail::write_in_unit_order(
+            const BatchPlan& batches = plan.batches;
+            write_in_unit_order(
                 columns_of(columns), batches, std::max(plan.room, columns.i.capacity()), limits,
-                plan.threads, detail::ListAccess::thread_columns(out), columns_of,
-                [&](std::size_t b, detail::PairSink& sink) {
-                    detail::CandidateScanner scan = s.scanner(sink);
+                plan.threads, ListAccess::thread_columns(out), columns_of,
+                [&](std::size_t b, PairSink& sink) {
+                    CandidateScanner scan = s.scanner(sink);
                     s.backend->visit(batches.bounds[b], batches.bounds[b + 1], scan);
                 });
         }
@@ -153,12 +166,12 @@ void NeighborSearch::compute(NeighborList& out) const {
             s.frame.to_caller(columns.shifts.data(), columns.size());
         }
         if (s.options.sorted) {
-            detail::sort_pairs(columns, s.atom_count);
+            sort_pairs(columns, s.atom_count);
         } else if (nearest) { // groups the pairs it keeps
-            detail::keep_nearest_within(columns, s.atom_count, s.options, plan.threads,
-                                        detail::ListAccess::order_scratch(out));
+            keep_nearest_within(columns, s.atom_count, s.options, plan.threads,
+                                ListAccess::order_scratch(out));
         } else if (s.options.grouped) {
-            detail::group_pairs(columns, s.atom_count, detail::ListAccess::order_scratch(out));
+            group_pairs(columns, s.atom_count, ListAccess::order_scratch(out));
         }
         if (!q.shifts) {
             columns.shifts.clear();
@@ -171,6 +184,24 @@ void NeighborSearch::compute(NeighborList& out) const {
         throw;
     }
 }
+
+void append_pairs(const SearchState& s, PairColumns& columns, const ListLimits& limits) {
+    if (!s.backend) {
+        return;
+    }
+    const Quantities& q = s.options.quantities;
+    const std::size_t start = columns.size();
+    PairSink sink(stored_columns(columns, q.shifts, q.distances, q.vectors), limits,
+                  pair_room(s.estimated_pairs), start);
+    CandidateScanner scan = s.scanner(sink);
+    s.backend->visit(0, s.backend->unit_count(), scan);
+    sink.finish();
+    if (q.shifts) {
+        s.frame.to_caller(columns.shifts.data() + 3 * start, columns.size() - start);
+    }
+}
+
+} // namespace detail
 
 void NeighborSearch::for_each_block(void (*on_block)(void*, const PairBlock&),
                                     void* context) const {
