@@ -92,7 +92,8 @@ class DirectBackend final : public Backend {
         found_.assign(1, Found{ImageShift{{0, 0, 0}, {0, 0, 0}}, 0, false});
         const Eigen::Vector3d c = h.col(2);
         const double cc = c.squaredNorm();
-        for (int sa = -m[0]; sa <= m[0]; ++sa) {
+        const int any = m[0] + m[1] + m[2]; // 0: S = 0 is the only image (no periodic axis)
+        for (int sa = -m[0]; any != 0 && sa <= m[0]; ++sa) {
             for (int sb = -m[1]; sb <= m[1]; ++sb) {
                 const Eigen::Vector3d row = h.col(0) * sa + h.col(1) * sb;
                 const double ac = row.dot(c);
@@ -127,9 +128,15 @@ class DirectBackend final : public Backend {
                 }
             }
         }
-        // Counting sort by bucket (stable: S = 0 stays first of `all_`).
-        sort_by_bucket(false, all_, all_end_);
-        sort_by_bucket(true, positive_, positive_end_);
+        if (found_.size() == 1) { // S = 0 alone (a molecule): what the sort below gives
+            all_.assign(1, found_[0].image);
+            all_end_.fill(1);
+            positive_.clear();
+            positive_end_.fill(0);
+        } else { // counting sort by bucket (stable: S = 0 stays first of `all_`)
+            sort_by_bucket(false, all_, all_end_);
+            sort_by_bucket(true, positive_, positive_end_);
+        }
         images_h_ = h;
         for (int k = 0; k < 3; ++k) {
             images_periodic_[std::size_t(k)] = input.frame.periodic(k);

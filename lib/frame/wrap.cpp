@@ -15,7 +15,11 @@ void wrap_into(const Box& box, PointsView positions, std::size_t threads, Wrappe
     const std::size_t n = positions.size();
     out.fractional.resize(n);
     out.image.resize(3 * n); // every entry written below
-    std::vector<Eigen::Vector3d> range_lower(threads), range_upper(threads);
+    // Each range's bounds (on the stack for one thread, the usual small system).
+    Eigen::Vector3d one_lower, one_upper;
+    std::vector<Eigen::Vector3d> many_lower(threads > 1 ? threads : 0), many_upper(many_lower);
+    Eigen::Vector3d* range_lower = threads > 1 ? many_lower.data() : &one_lower;
+    Eigen::Vector3d* range_upper = threads > 1 ? many_upper.data() : &one_upper;
     parallel_ranges(n, threads, [&](std::size_t begin, std::size_t end, std::size_t t) {
         // Each range's bounds are kept in locals and stored once: updated in place per atom,
         // neighbouring threads' entries would share a cache line.
