@@ -27,6 +27,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "tricell/box.hpp"
@@ -112,6 +113,10 @@ class TRICELL_API BatchList {
 
     /// Empties the list, keeping the capacity.
     void clear();
+
+    /// Exchanges the pair columns with `other` (the offsets stay): a front takes the pairs
+    /// without a copy, or hands buffers in for the next call to fill (it reuses their capacity).
+    void swap_columns(PairColumns& other) noexcept { std::swap(columns_, other); }
 
   private:
     friend void compute_neighbors_batch(const BatchStructure*, std::size_t, const NeighborOptions&,

@@ -8,6 +8,7 @@
 #include <cctype>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <string>
 
 namespace tricell::python {
@@ -39,6 +40,14 @@ inline std::string batch_pointer_problem(const std::int64_t* ptr, std::size_t en
                at(entries - 1) + ")";
     }
     return std::string();
+}
+
+/// Whether structure s > 0 has the very cell of structure s - 1 (`cells`: 9 doubles, the rows,
+/// per structure), bit for bit: with the same periodicity, the box built for s - 1 then serves
+/// s as it is (molecules of a data set all come with the same all-zero cell), and a front
+/// builds it once.
+inline bool same_cell_as_previous(const double* cells, std::size_t s) {
+    return s > 0 && std::memcmp(cells + 9 * s, cells + 9 * (s - 1), 9 * sizeof(double)) == 0;
 }
 
 /// A library message about one structure of a batch ("structure S: ..."), with the rows of the

@@ -146,19 +146,30 @@ template <class List> py::object keeper(const std::shared_ptr<const List>& owner
     return py::capsule(keep, [](void* p) { delete static_cast<std::shared_ptr<const List>*>(p); });
 }
 
-// i or j of a batch with each structure's first atom added: indices into all its atoms.
-py::array global_indices(const BatchList& list, const PairArray<std::uint32_t>& local) {
-    py::array_t<std::uint32_t> out(static_cast<py::ssize_t>(list.size()));
-    std::uint32_t* to = out.mutable_data();
-    const std::vector<std::size_t>& pairs = list.pair_offsets();
-    const std::vector<std::size_t>& atoms = list.atom_offsets();
-    for (std::size_t s = 0; s + 1 < pairs.size(); ++s) {
-        const auto first = static_cast<std::uint32_t>(atoms[s]);
-        for (std::size_t k = pairs[s]; k < pairs[s + 1]; ++k) {
-            to[k] = local[k] + first;
-        }
+// A column buffer owned by the arrays' capsule, given back to its recycler when they are gone.
+template <class T> struct OwnedColumn {
+    PairArray<T> data;
+    PairArray<T> PairColumns::*which;
+    std::weak_ptr<ColumnRecycler> home;
+};
+
+// An array of the `width`-wide rows of `column`, which it takes over (no copy).
+template <class T>
+py::array owned_column(PairArray<T>& column, PairArray<T> PairColumns::*which, std::size_t width,
+                       const std::shared_ptr<ColumnRecycler>& recycler) {
+    std::vector<py::ssize_t> shape{static_cast<py::ssize_t>(column.size() / width)};
+    if (width > 1) {
+        shape.push_back(static_cast<py::ssize_t>(width));
     }
-    return std::move(out);
+    auto* owned = new OwnedColumn<T>{std::move(column), which, recycler};
+    py::capsule base(owned, [](void* p) {
+        auto* c = static_cast<OwnedColumn<T>*>(p);
+        if (const std::shared_ptr<ColumnRecycler> home = c->home.lock()) {
+            home->give_back(c->which, c->data);
+        }
+        delete c;
+    });
+    return py::array_t<T>(shape, owned->data.data(), base);
 }
 
 } // namespace
@@ -168,36 +179,101 @@ py::object pair_columns(const NeighborList& list, const QuantitySpec& spec,
     return columns_of(list, spec, keeper(owner));
 }
 
-py::tuple batch_columns(const BatchList& list, const QuantitySpec& spec,
-                        const std::shared_ptr<const BatchList>& owner, bool global) {
+template <class T>
+void ColumnRecycler::give_back(PairArray<T> PairColumns::*which, PairArray<T>& column) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    PairArray<T>& spare = spare_.*which;
+    if (column.capacity() > spare.capacity()) {
+        column.clear();
+        spare.swap(column);
+    }
+}
+
+void ColumnRecycler::lend(BatchList& list) {
+    PairColumns columns;
+    list.swap_columns(columns);
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        const auto lend_one = [](auto& to, auto& from) {
+            if (from.capacity() > to.capacity()) {
+                to.swap(from);
+            }
+        };
+        lend_one(columns.i, spare_.i);
+        lend_one(columns.j, spare_.j);
+        lend_one(columns.shifts, spare_.shifts);
+        lend_one(columns.distances, spare_.distances);
+        lend_one(columns.vectors, spare_.vectors);
+    }
+    list.swap_columns(columns);
+}
+
+py::tuple batch_columns(BatchList& list, const QuantitySpec& spec,
+                        const std::shared_ptr<const BatchList>& owner,
+                        const std::shared_ptr<ColumnRecycler>& recycler) {
     const std::vector<std::size_t>& offsets = list.pair_offsets();
     py::array_t<std::int64_t> pair_offsets(static_cast<py::ssize_t>(offsets.size()));
     for (std::size_t s = 0; s < offsets.size(); ++s) {
         pair_offsets.mutable_data()[s] = static_cast<std::int64_t>(offsets[s]);
     }
     const std::size_t count = spec.columns.size();
-    py::object columns = columns_of(list, spec, keeper(owner));
     py::tuple out(1 + count);
     out[0] = pair_offsets;
-    for (std::size_t k = 0; k < count; ++k) {
-        py::object column = count == 1 ? columns : py::object(columns.cast<py::tuple>()[k]);
-        if (global && spec.columns[k] == Column::i) {
-            column = global_indices(list, list.i());
-        } else if (global && spec.columns[k] == Column::j) {
-            column = global_indices(list, list.j());
-        } else if (global && spec.columns[k] == Column::pairs) {
-            const py::array_t<std::uint32_t> i = global_indices(list, list.i());
-            const py::array_t<std::uint32_t> j = global_indices(list, list.j());
-            py::array_t<std::uint32_t> pairs(
-                std::vector<py::ssize_t>{static_cast<py::ssize_t>(list.size()), 2});
-            for (std::size_t m = 0; m < list.size(); ++m) {
-                pairs.mutable_data()[2 * m] = i.data()[m];
-                pairs.mutable_data()[2 * m + 1] = j.data()[m];
-            }
-            column = pairs;
+    if (owner || list.size() == 0) {
+        py::object columns = columns_of(list, spec, keeper(owner));
+        for (std::size_t k = 0; k < count; ++k) {
+            out[k + 1] = count == 1 ? columns : py::object(columns.cast<py::tuple>()[k]);
         }
-        out[k + 1] = column;
+        return out;
     }
+    // P and o first (fresh arrays built from the columns), then each asked column taken over
+    // once (a letter asked again is a copy of the first array).
+    QuantitySpec rest;
+    for (std::size_t k = 0; k < count; ++k) {
+        const Column c = spec.columns[k];
+        if (c == Column::pairs || c == Column::offsets) {
+            rest.columns.assign(1, c);
+            out[k + 1] = columns_of(list, rest, py::object());
+        }
+    }
+    PairColumns taken;
+    list.swap_columns(taken);
+    std::vector<std::pair<Column, py::object>> given;
+    for (std::size_t k = 0; k < count; ++k) {
+        const Column c = spec.columns[k];
+        if (c == Column::pairs || c == Column::offsets) {
+            continue;
+        }
+        const auto first = std::find_if(given.begin(), given.end(),
+                                        [c](const auto& entry) { return entry.first == c; });
+        if (first != given.end()) {
+            out[k + 1] = first->second.attr("copy")();
+            continue;
+        }
+        py::array a;
+        switch (c) {
+        case Column::i:
+            a = owned_column(taken.i, &PairColumns::i, 1, recycler);
+            break;
+        case Column::j:
+            a = owned_column(taken.j, &PairColumns::j, 1, recycler);
+            break;
+        case Column::shifts:
+            a = owned_column(taken.shifts, &PairColumns::shifts, 3, recycler);
+            break;
+        case Column::distances:
+            a = owned_column(taken.distances, &PairColumns::distances, 1, recycler);
+            break;
+        case Column::vectors:
+            a = owned_column(taken.vectors, &PairColumns::vectors, 3, recycler);
+            break;
+        default:
+            break;
+        }
+        given.emplace_back(c, a);
+        out[k + 1] = a;
+    }
+    list.swap_columns(taken); // what was not asked for stays with the list
     return out;
 }
 

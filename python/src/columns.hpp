@@ -13,6 +13,7 @@
 #pragma once
 
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -45,11 +46,29 @@ QuantitySpec parse_quantities(const std::string& letters);
 py::object pair_columns(const NeighborList& list, const QuantitySpec& spec,
                         const std::shared_ptr<const NeighborList>& owner);
 
+/// Column buffers that the arrays of batch_columns() give back when the caller drops them, lent
+/// to the next batch of the same NeighborList, so that its columns reuse memory already faulted
+/// in instead of fresh pages; at most one spare buffer per column (the largest).
+class ColumnRecycler {
+  public:
+    /// Swaps the spares into the columns of `list` that hold less room.
+    void lend(BatchList& list);
+    /// Keeps `column` (a buffer of the column `which`) as that column's spare if it holds more
+    /// room than the spare.
+    template <class T> void give_back(PairArray<T> PairColumns::*which, PairArray<T>& column);
+
+  private:
+    std::mutex mutex_;
+    PairColumns spare_;
+};
+
 /// The lists of a batch: a tuple of the per-structure pair offsets (int64, structures + 1)
-/// followed by the columns of `spec` over all structures, views whose base holds `owner` when it
-/// is set, copies otherwise. `global`: i and j (and P) index all structures' atoms (each
-/// structure's atom offset added), as fresh arrays.
-py::tuple batch_columns(const BatchList& list, const QuantitySpec& spec,
-                        const std::shared_ptr<const BatchList>& owner, bool global);
+/// followed by the columns of `spec` over all structures (P and o fresh arrays). With `owner`
+/// set, views whose base holds `owner`; otherwise the columns are taken out of `list` without a
+/// copy, each array owning its own buffer and giving it back to `recycler` when dropped (a
+/// letter asked twice is copied the second time).
+py::tuple batch_columns(BatchList& list, const QuantitySpec& spec,
+                        const std::shared_ptr<const BatchList>& owner,
+                        const std::shared_ptr<ColumnRecycler>& recycler);
 
 } // namespace tricell::python

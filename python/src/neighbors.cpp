@@ -161,7 +161,9 @@ class PyNeighborList {
             py::gil_scoped_release release;
             std::lock_guard<std::mutex> lock(mutex_);
             batch = free_entry(batch_pool_);
-            compute_neighbors_batch(structures, options, *batch);
+            recycler_->lend(*batch);
+            compute_neighbors_batch(structures, options, *batch,
+                                    ptr.empty() ? BatchIndices::local : BatchIndices::global);
         } catch (const PairLimitError&) {
             throw;
         } catch (const Error& e) {
@@ -170,7 +172,7 @@ class PyNeighborList {
             }
             throw py::value_error(with_rows_of(e.what(), ptr.data(), ptr.size(), "points"));
         }
-        return batch_columns(*batch, spec, copy ? nullptr : batch, !ptr.empty());
+        return batch_columns(*batch, spec, copy ? nullptr : batch, recycler_);
     }
 
     bool full() const { return !options_.half; }
@@ -238,10 +240,13 @@ class PyNeighborList {
         for (std::size_t s = 0; s < count; ++s) {
             const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> rows(h.data() +
                                                                                       9 * s);
+            const PointsView x(points.data() + 3 * ptr[s], std::size_t(ptr[s + 1] - ptr[s]));
+            if (same_cell_as_previous(h.data(), s) && pbc[s] == pbc[s - 1]) {
+                structures.push_back(BatchStructure{structures.back().box, x});
+                continue;
+            }
             try {
-                structures.push_back(BatchStructure{
-                    Box::from_rows(rows, pbc[s]),
-                    PointsView(points.data() + 3 * ptr[s], std::size_t(ptr[s + 1] - ptr[s]))});
+                structures.push_back(BatchStructure{Box::from_rows(rows, pbc[s]), x});
             } catch (const Error& e) {
                 throw py::value_error("structure " + std::to_string(s) + ", boxes[" +
                                       std::to_string(s) + "]: " + e.what());
@@ -287,6 +292,9 @@ class PyNeighborList {
     NeighborSearch search_;
     std::vector<std::shared_ptr<NeighborList>> pool_;
     std::vector<std::shared_ptr<BatchList>> batch_pool_; // of compute_batch(), the same way
+    // The buffers of the arrays compute_batch() handed over (copy=True), back for reuse by the
+    // next call.
+    std::shared_ptr<ColumnRecycler> recycler_ = std::make_shared<ColumnRecycler>();
     std::mutex mutex_;
 };
 
