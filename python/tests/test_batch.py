@@ -157,6 +157,32 @@ def test_views_of_a_concatenated_batch_outlive_the_next_call():
     assert all(np.array_equal(a, b) for a, b in zip(first, kept))
 
 
+def test_arrays_of_a_batch_are_the_callers_whatever_comes_next():
+    """copy=True hands the columns over without a copy, and their buffers come back for reuse
+    when dropped: arrays kept stay as they were through later calls (of either copy mode, the
+    caller writing into them), dropped ones give the next call the same lists, and a letter
+    asked twice gives two arrays."""
+    points, boxes, pbcs, cutoff = random_batch(7)
+    x, h, pbc, ptr = concatenated(points, boxes, pbcs)
+    nl = tricell.NeighborList(cutoff)
+    expected = nl.compute_batch(x, h, pbc, "ijSdDd", batch_ptr=ptr, copy=False)
+    expected = [a.copy() for a in expected]
+    assert np.array_equal(expected[4], expected[6])
+    kept = nl.compute_batch(x, h, pbc, "ijSdDd", batch_ptr=ptr)
+    for round in range(4):
+        copy = round % 2 == 0
+        moved = nl.compute_batch(x + 0.5 * (round + 1), h, pbc, "ijSdDd", batch_ptr=ptr,
+                                 copy=copy)
+        for a in moved[1:]:
+            a[...] = 0  # the caller's to change
+        del moved  # its buffers go back to the next call
+        again = nl.compute_batch(x, h, pbc, "ijSdDd", batch_ptr=ptr, copy=copy)
+        assert all(np.array_equal(a, b) for a, b in zip(again, expected)), round
+    assert all(np.array_equal(a, b) for a, b in zip(kept, expected))
+    kept[4][...] = -1.0
+    assert not np.shares_memory(kept[4], kept[6]) and np.array_equal(kept[6], expected[6])
+
+
 def test_concatenated_errors_name_the_argument_and_the_structure():
     rng = np.random.default_rng(0)
     x = rng.random((40, 3)) * 3
