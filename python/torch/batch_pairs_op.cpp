@@ -94,11 +94,17 @@ batch_pairs(const at::Tensor& positions, const at::Tensor& cells, const at::Tens
         for (std::size_t axis = 0; axis < 3; ++axis) {
             periodic.axes[axis] = flag[3 * s + std::int64_t(axis)];
         }
+        const tricell::PointsView points(
+            x_data == nullptr ? nullptr : x_data + 3 * ptr[std::size_t(s)],
+            std::size_t(ptr[std::size_t(s) + 1] - ptr[std::size_t(s)]));
+        if (tricell::python::same_cell_as_previous(h.data_ptr<double>(), std::size_t(s)) &&
+            periodic == structures.back().box.periodicity()) {
+            structures.push_back(tricell::BatchStructure{structures.back().box, points});
+            continue;
+        }
         try {
             structures.push_back(tricell::BatchStructure{
-                box_from_rows(h.data_ptr<double>() + 9 * s, periodic),
-                tricell::PointsView(x_data == nullptr ? nullptr : x_data + 3 * ptr[std::size_t(s)],
-                                    std::size_t(ptr[std::size_t(s) + 1] - ptr[std::size_t(s)]))});
+                box_from_rows(h.data_ptr<double>() + 9 * s, periodic), points});
         } catch (const tricell::Error& error) {
             TORCH_CHECK(false, op, ": structure ", s, ", cells[", s, "]: ", error.what());
         }
@@ -118,7 +124,7 @@ batch_pairs(const at::Tensor& positions, const at::Tensor& cells, const at::Tens
     // One list per thread, kept between calls: its buffers are reused, as a NeighborList's are.
     thread_local tricell::BatchList list;
     try {
-        tricell::compute_neighbors_batch(structures, options, list);
+        tricell::compute_neighbors_batch(structures, options, list, tricell::BatchIndices::global);
     } catch (const tricell::Error& error) {
         TORCH_CHECK(
             false, op, ": ",
@@ -138,12 +144,11 @@ batch_pairs(const at::Tensor& positions, const at::Tensor& cells, const at::Tens
     for (std::int64_t s = 0; s <= count; ++s) {
         offsets.data_ptr<std::int64_t>()[s] = std::int64_t(pair_offsets[std::size_t(s)]);
     }
-    for (std::size_t s = 0; s + 1 < pair_offsets.size(); ++s) {
-        const std::int64_t first = ptr[s]; // the structure's first row: global indices
-        for (std::size_t k = pair_offsets[s]; k < pair_offsets[s + 1]; ++k) {
-            i_out[k] = first + list.i()[k];
-            j_out[k] = first + list.j()[k];
-        }
+    const std::uint32_t* i_in = list.i().data(); // global: rows of the positions
+    const std::uint32_t* j_in = list.j().data();
+    for (std::size_t k = 0; k < list.size(); ++k) {
+        i_out[k] = i_in[k];
+        j_out[k] = j_in[k];
     }
     for (std::size_t k = 0; k < 3 * list.size(); ++k) {
         s_out[k] = s_in[k];
