@@ -5,6 +5,7 @@ positions (some far outside the box, by tens of lattice vectors) and a cutoff (s
 several times the box). Every case comes from a fixed seed, which the assertion messages
 name, so a failure can be replayed.
 """
+import importlib
 import itertools
 import os
 import resource
@@ -97,3 +98,37 @@ def assert_same_pairs(mine, theirs, context):
 @pytest.fixture
 def source_dir():
     return SOURCE_DIR
+
+
+def import_torch_front(module="tricell.torch"):
+    """The torch front `module`; the calling test file skips itself, with the reason, when
+    PyTorch is missing or the op library was not built (no libtorch, or the sanitizer build).
+    Any other failure to import is an error."""
+    try:
+        return importlib.import_module(module)
+    except ImportError as error:
+        if error.name in ("tricell._tricell_torch", "torch"):
+            pytest.skip(str(error), allow_module_level=True)
+        raise
+
+
+def brute_force_pairs(positions, cell, pbc, cutoff):
+    """The full list's (i, j, S) of one system by brute force, as a set: the positions wrapped
+    along the periodic axes, every image the widths allow, S mapped back to the given
+    positions."""
+    periodic = np.array(pbc)
+    moved = np.where(periodic, np.floor(positions @ np.linalg.inv(cell)), 0).astype(int)
+    wrapped = positions - moved @ cell
+    widths = 1.0 / np.linalg.norm(np.linalg.inv(cell), axis=0)
+    reach = np.where(periodic, np.ceil(cutoff / widths).astype(int) + 1, 0)
+    images = np.array([(a, b, c) for a in range(-reach[0], reach[0] + 1)
+                       for b in range(-reach[1], reach[1] + 1)
+                       for c in range(-reach[2], reach[2] + 1)])
+    found = set()
+    for i in range(len(positions)):
+        d = wrapped[None, :, :] - wrapped[i] + (images @ cell)[:, None, :]
+        for image, j in zip(*np.nonzero(np.linalg.norm(d, axis=2) < cutoff)):
+            if i != j or images[image].any():
+                S = images[image] - moved[j] + moved[i]
+                found.add((i, int(j), tuple(int(v) for v in S)))
+    return found

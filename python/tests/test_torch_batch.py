@@ -10,16 +10,13 @@ from typing import List
 import numpy as np
 import pytest
 
-try:
-    import tricell.torch as tt
-except ImportError as error:
-    if error.name in ("tricell._tricell_torch", "torch"):
-        pytest.skip(str(error), allow_module_level=True)
-    raise
+from conftest import import_torch_front
+
+tt = import_torch_front()
 import torch
 
 import tricell
-from conftest import random_system
+from conftest import brute_force_pairs, random_system
 from test_torch import LennardJones, energy_forces_stress, lj_system
 
 LETTERS = "ijSDd"
@@ -187,27 +184,6 @@ def test_pair_vectors_refuses_pairs_that_do_not_fit():
         torch.ops.tricell.pair_vectors(x, h, i, i, S, torch.tensor([0, 0]))
     with pytest.raises(RuntimeError, match=r"pair_vectors: S must be an int64 tensor"):
         torch.ops.tricell.pair_vectors(x, h, i, i, S.int(), torch.tensor([0, 1]))
-
-
-def brute_force_pairs(positions, cell, pbc, cutoff):
-    """The full list's (i, j, S) of one system by brute force: the positions wrapped along the
-    periodic axes, every image the widths allow, S mapped back to the given positions."""
-    periodic = np.array(pbc)
-    moved = np.where(periodic, np.floor(positions @ np.linalg.inv(cell)), 0).astype(int)
-    wrapped = positions - moved @ cell
-    widths = 1.0 / np.linalg.norm(np.linalg.inv(cell), axis=0)
-    reach = np.where(periodic, np.ceil(cutoff / widths).astype(int) + 1, 0)
-    images = np.array([(a, b, c) for a in range(-reach[0], reach[0] + 1)
-                       for b in range(-reach[1], reach[1] + 1)
-                       for c in range(-reach[2], reach[2] + 1)])
-    found = set()
-    for i in range(len(positions)):
-        d = wrapped[None, :, :] - wrapped[i] + (images @ cell)[:, None, :]
-        for image, j in zip(*np.nonzero(np.linalg.norm(d, axis=2) < cutoff)):
-            if i != j or images[image].any():
-                S = images[image] - moved[j] + moved[i]
-                found.add((i, int(j), tuple(int(v) for v in S)))
-    return found
 
 
 @pytest.mark.parametrize("seed", range(12))

@@ -8,12 +8,9 @@ Skipped, with the reason, when the op library was not built or PyTorch is missin
 import numpy as np
 import pytest
 
-try:
-    import tricell.torch as tt
-except ImportError as error:
-    if error.name in ("tricell._tricell_torch", "torch"):
-        pytest.skip(str(error), allow_module_level=True)
-    raise
+from conftest import import_torch_front
+
+tt = import_torch_front()
 import torch
 
 from conftest import random_system

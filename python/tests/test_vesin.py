@@ -13,32 +13,12 @@ from ase.neighborlist import neighbor_list as ase_neighbor_list
 
 import tricell
 import tricell.vesin as vesin
-from conftest import ALL_PBC, random_system, sort_pairs
+from conftest import ALL_PBC, brute_force_pairs, random_system, sort_pairs
 
 
 def pair_set(i, j, S):
     return set(zip(np.asarray(i).tolist(), np.asarray(j).tolist(),
                    map(tuple, np.asarray(S).tolist())))
-
-
-def brute_force(positions, cell, pbc, cutoff):
-    """(i, j, S) of the full list: positions wrapped along periodic axes, every image the
-    widths allow, S mapped back to the given positions."""
-    periodic = np.array(pbc)
-    moved = np.where(periodic, np.floor(positions @ np.linalg.inv(cell)), 0).astype(int)
-    wrapped = positions - moved @ cell
-    widths = 1.0 / np.linalg.norm(np.linalg.inv(cell), axis=0)
-    reach = np.where(periodic, np.ceil(cutoff / widths).astype(int) + 1, 0)
-    images = np.array([(a, b, c) for a in range(-reach[0], reach[0] + 1)
-                       for b in range(-reach[1], reach[1] + 1)
-                       for c in range(-reach[2], reach[2] + 1)])
-    found = set()
-    for i in range(len(positions)):
-        d = wrapped[None, :, :] - wrapped[i] + (images @ cell)[:, None, :]
-        for image, j in zip(*np.nonzero(np.linalg.norm(d, axis=2) < cutoff)):
-            if i != j or images[image].any():
-                found.add((i, int(j), tuple(int(v) for v in images[image] - moved[j] + moved[i])))
-    return found
 
 
 @pytest.mark.parametrize("seed", range(48))
@@ -58,7 +38,7 @@ def test_pairs_equal_the_native_module_and_a_brute_force(seed):
     for k, name in enumerate("ijSdD"):
         assert np.array_equal(mine[k], theirs[k]), f"seed {seed}: {name}"
     if full:
-        assert pair_set(i, j, S) == brute_force(positions, cell, pbc, cutoff), f"seed {seed}"
+        assert pair_set(i, j, S) == brute_force_pairs(positions, cell, pbc, cutoff), f"seed {seed}"
     if sorted_:
         assert np.all(np.diff(i.astype(np.int64)) >= 0), f"seed {seed}: not sorted by i"
 

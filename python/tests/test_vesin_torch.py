@@ -8,12 +8,9 @@ from typing import List
 import numpy as np
 import pytest
 
-try:
-    import tricell.vesin.torch as vesin_torch
-except ImportError as error:
-    if error.name in ("tricell._tricell_torch", "torch"):
-        pytest.skip(str(error), allow_module_level=True)
-    raise
+from conftest import import_torch_front
+
+vesin_torch = import_torch_front("tricell.vesin.torch")
 import torch
 
 import tricell.vesin as vesin
