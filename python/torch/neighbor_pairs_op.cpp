@@ -27,30 +27,12 @@ namespace {
 
 using namespace tricell::torch_ops; // op_arguments.hpp
 
-void check_arguments(const at::Tensor& positions, const at::Tensor& cell,
-                     const c10::List<bool>& periodic, double cutoff) {
-    check_positions_and_cell("neighbor_pairs", positions, cell, "cell");
-    TORCH_CHECK(cell.dim() == 2 && cell.size(0) == 3 && cell.size(1) == 3,
-                "neighbor_pairs: cell must be a 3 x 3 tensor with the lattice vectors as rows "
-                "(got shape ",
-                shape_of(cell), ")");
-    TORCH_CHECK(periodic.size() == 3, "neighbor_pairs: periodic must be three bools (got ",
-                periodic.size(), ")");
-    check_cutoff("neighbor_pairs", cutoff);
-}
-
 std::tuple<at::Tensor, at::Tensor, at::Tensor>
 neighbor_pairs(const at::Tensor& positions, const at::Tensor& cell, const c10::List<bool>& periodic,
                double cutoff, bool full, bool grouped, int64_t max_neighbors, double tie_tolerance,
                bool symmetric) {
-    check_arguments(positions, cell, periodic, cutoff);
-    const at::Tensor x = positions.detach().to(at::kDouble).contiguous();
-    const at::Tensor h = cell.detach().to(at::kDouble).contiguous();
-
-    tricell::Periodicity pbc;
-    for (std::size_t axis = 0; axis < 3; ++axis) {
-        pbc.axes[axis] = periodic[axis];
-    }
+    const Structure structure = structure_of("neighbor_pairs", positions, cell, periodic);
+    check_cutoff("neighbor_pairs", cutoff);
     tricell::NeighborOptions options;
     options.cutoff = cutoff;
     options.half = !full;
@@ -63,9 +45,7 @@ neighbor_pairs(const at::Tensor& positions, const at::Tensor& cell, const c10::L
     // One list per thread, kept between calls: its buffers are reused, as a NeighborList's are.
     thread_local tricell::NeighborList list;
     try {
-        const auto n = static_cast<std::size_t>(x.size(0));
-        const tricell::PointsView points(n == 0 ? nullptr : x.data_ptr<double>(), n);
-        tricell::compute_neighbors(box_from_rows(h.data_ptr<double>(), pbc), points, options, list);
+        tricell::compute_neighbors(structure.box(), structure.points(), options, list);
     } catch (const tricell::Error& error) {
         TORCH_CHECK(false, "neighbor_pairs: ", error.what());
     }

@@ -29,18 +29,7 @@ constexpr const char* op = "neighbor_shells";
 std::tuple<at::Tensor, at::Tensor, at::Tensor, at::Tensor>
 neighbor_shells(const at::Tensor& positions, const at::Tensor& cell,
                 const c10::List<bool>& periodic, const c10::List<double>& cutoffs, bool full) {
-    check_positions_and_cell(op, positions, cell, "cell");
-    TORCH_CHECK(cell.dim() == 2 && cell.size(0) == 3 && cell.size(1) == 3, op,
-                ": cell must be a 3 x 3 tensor with the lattice vectors as rows (got shape ",
-                shape_of(cell), ")");
-    TORCH_CHECK(periodic.size() == 3, op, ": periodic must be three bools (got ", periodic.size(),
-                ")");
-    const at::Tensor x = positions.detach().to(at::kDouble).contiguous();
-    const at::Tensor h = cell.detach().to(at::kDouble).contiguous();
-    tricell::Periodicity pbc;
-    for (std::size_t axis = 0; axis < 3; ++axis) {
-        pbc.axes[axis] = periodic[axis];
-    }
+    const Structure structure = structure_of(op, positions, cell, periodic);
     tricell::NeighborOptions options;
     options.half = !full;
     options.quantities.shifts = true;
@@ -49,10 +38,7 @@ neighbor_shells(const at::Tensor& positions, const at::Tensor& cell,
     const std::vector<double> radii(cutoffs.begin(), cutoffs.end());
     tricell::ShellNeighborList shells;
     try {
-        const auto n = static_cast<std::size_t>(x.size(0));
-        shells = tricell::compute_neighbors(
-            box_from_rows(h.data_ptr<double>(), pbc),
-            tricell::PointsView(n == 0 ? nullptr : x.data_ptr<double>(), n), radii, options);
+        shells = tricell::compute_neighbors(structure.box(), structure.points(), radii, options);
     } catch (const tricell::Error& error) {
         TORCH_CHECK(false, op, ": ", error.what());
     }

@@ -72,4 +72,36 @@ inline Box box_from_rows(const double* rows, const Periodicity& pbc) {
     return Box::from_rows(m, pbc);
 }
 
+/// One structure's arguments, checked, as the library takes them: `x` (N x 3) and `h` (3 x 3,
+/// the lattice vectors as rows) are detached float64 copies of the positions and the cell.
+struct Structure {
+    at::Tensor x;
+    at::Tensor h;
+    Periodicity pbc;
+
+    Box box() const { return box_from_rows(h.data_ptr<double>(), pbc); }
+    PointsView points() const {
+        const auto n = static_cast<std::size_t>(x.size(0));
+        return PointsView(n == 0 ? nullptr : x.data_ptr<double>(), n);
+    }
+};
+
+/// N x 3 positions, a 3 x 3 cell of their dtype on the CPU and three periodicity flags.
+inline Structure structure_of(const char* op, const at::Tensor& positions, const at::Tensor& cell,
+                              const c10::List<bool>& periodic) {
+    check_positions_and_cell(op, positions, cell, "cell");
+    TORCH_CHECK(cell.dim() == 2 && cell.size(0) == 3 && cell.size(1) == 3, op,
+                ": cell must be a 3 x 3 tensor with the lattice vectors as rows (got shape ",
+                shape_of(cell), ")");
+    TORCH_CHECK(periodic.size() == 3, op, ": periodic must be three bools (got ", periodic.size(),
+                ")");
+    Structure s;
+    s.x = positions.detach().to(at::kDouble).contiguous();
+    s.h = cell.detach().to(at::kDouble).contiguous();
+    for (std::size_t axis = 0; axis < 3; ++axis) {
+        s.pbc.axes[axis] = periodic[axis];
+    }
+    return s;
+}
+
 } // namespace tricell::torch_ops

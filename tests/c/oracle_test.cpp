@@ -53,6 +53,16 @@ void expect_same_list(const tricell::NeighborList& cxx, const tricell_pairs& c,
     }
 }
 
+// The pairs tricell_neighbors() gives for `sys` with `o`: a view into `list`.
+void c_neighbors(tricell_neighbor_search* search, tricell_neighbor_list* list,
+                 const RandomSystem& sys, const tricell_neighbor_options& o, tricell_pairs& pairs) {
+    const tricell_box box = c_box(sys);
+    ASSERT_EQ(tricell_neighbors(search, &box, xyz(sys.positions), sys.positions.size(), &o, list),
+              TRICELL_OK)
+        << tricell_last_error();
+    ASSERT_EQ(tricell_neighbor_list_pairs(list, &pairs), TRICELL_OK);
+}
+
 } // namespace
 
 TEST(CApiOracle, Neighbors_MatchCxxAndBruteForce) {
@@ -72,13 +82,8 @@ TEST(CApiOracle, Neighbors_MatchCxxAndBruteForce) {
         o.vectors = 1;
         o.threads = rng() % 3 == 0 ? 3 : 1;
         o.grouped = o.sorted == 0 ? int(rng() % 2) : 0;
-        const tricell_box box = c_box(sys);
-        ASSERT_EQ(tricell_neighbors(search.get(), &box, xyz(sys.positions), sys.positions.size(),
-                                    &o, list.get()),
-                  TRICELL_OK)
-            << tricell_last_error();
         tricell_pairs pairs;
-        ASSERT_EQ(tricell_neighbor_list_pairs(list.get(), &pairs), TRICELL_OK);
+        ASSERT_NO_FATAL_FAILURE(c_neighbors(search.get(), list.get(), sys, o, pairs));
         pairs_seen += pairs.size;
 
         tricell::NeighborOptions cxx_options;
@@ -177,13 +182,8 @@ TEST(CApiOracle, NearestWithin_MatchesCxx) {
         o.tie_tolerance = seed % 3 == 0 ? 0.1 : 0.0;
         o.symmetric = int(seed % 2);
         o.vectors = 1;
-        const tricell_box box = c_box(sys);
-        ASSERT_EQ(tricell_neighbors(search.get(), &box, xyz(sys.positions), sys.positions.size(),
-                                    &o, list.get()),
-                  TRICELL_OK)
-            << tricell_last_error();
         tricell_pairs pairs;
-        ASSERT_EQ(tricell_neighbor_list_pairs(list.get(), &pairs), TRICELL_OK);
+        ASSERT_NO_FATAL_FAILURE(c_neighbors(search.get(), list.get(), sys, o, pairs));
         tricell::NeighborOptions cxx_options;
         cxx_options.cutoff = sys.cutoff;
         cxx_options.max_neighbors = o.max_neighbors;
@@ -502,13 +502,8 @@ TEST(CApiOracle, QuerySubset_MatchesCxx) {
         const std::uint32_t none = 0;
         o.query = query.empty() ? &none : query.data(); // NULL would mean every point
         o.query_count = query.size();
-        const tricell_box box = c_box(sys);
-        ASSERT_EQ(tricell_neighbors(search.get(), &box, xyz(sys.positions), sys.positions.size(),
-                                    &o, list.get()),
-                  TRICELL_OK)
-            << tricell_last_error();
         tricell_pairs pairs;
-        ASSERT_EQ(tricell_neighbor_list_pairs(list.get(), &pairs), TRICELL_OK);
+        ASSERT_NO_FATAL_FAILURE(c_neighbors(search.get(), list.get(), sys, o, pairs));
         tricell::NeighborOptions cxx_options;
         cxx_options.cutoff = sys.cutoff;
         cxx_options.half = o.half == 1;
