@@ -20,22 +20,31 @@ if [ "${TRICELL_CCACHE:-1}" = 1 ] && command -v ccache >/dev/null; then
     export CCACHE_BASEDIR="$PWD" CCACHE_NOHASHDIR=1
 fi
 
-echo "== format check"
+# Optimised builds with line tables only (-g1): symbolised backtraces and sanitizer reports
+# name file and line, and the builds compile in two thirds of the time full debug info takes.
+optimised=(-DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O2 -g1 -DNDEBUG"
+           "-DCMAKE_C_FLAGS_RELWITHDEBINFO=-O2 -g1 -DNDEBUG")
+export TRICELL_FUZZ_FLAGS="-O2 -g1 -DNDEBUG"
+
+# Each stage's header says how long the run has taken so far.
+stage() { echo "== $1 (at $((SECONDS / 60)) min $((SECONDS % 60)) s)"; }
+
+stage "format check"
 bash scripts/format-check.sh
 
-echo "== optimised build (build/)"
-cmake -S . -B build -DCMAKE_BUILD_TYPE=RelWithDebInfo
+stage "optimised build (build/)"
+cmake -S . -B build "${optimised[@]}"
 cmake --build build -j "$jobs"
 ctest --test-dir build -j "$jobs" --output-on-failure
 
-echo "== sanitizer build (build-asan/)"
-cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTRICELL_SANITIZE=ON \
+stage "sanitizer build (build-asan/)"
+cmake -S . -B build-asan "${optimised[@]}" -DTRICELL_SANITIZE=ON \
     -DTRICELL_BUILD_BENCHMARKS=OFF -DBUILD_SHARED_LIBS=ON
 cmake --build build-asan -j "$jobs"
 ctest --test-dir build-asan -j "$jobs" --output-on-failure
 
-echo "== thread sanitizer (build-tsan/: the threading tests only)"
-cmake -S . -B build-tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTRICELL_SANITIZE_THREAD=ON \
+stage "thread sanitizer (build-tsan/: the threading tests only)"
+cmake -S . -B build-tsan "${optimised[@]}" -DTRICELL_SANITIZE_THREAD=ON \
     -DTRICELL_BUILD_BENCHMARKS=OFF -DTRICELL_BUILD_PYTHON=OFF \
     -DTRICELL_BUILD_IO=OFF -DTRICELL_BUILD_MPI=OFF -DTRICELL_BUILD_FORTRAN=OFF \
     -DTRICELL_BUILD_EXAMPLES=OFF
@@ -43,6 +52,7 @@ cmake --build build-tsan -j "$jobs" \
     --target parallel_test concurrency_stress_test fork_test c_concurrency_stress_test
 ctest --test-dir build-tsan -R 'stress|fork|ThreadTeam' -j "$jobs" --output-on-failure
 
-echo "== fuzzers (build-fuzz/, clang-14, ASan + UBSan + libFuzzer)"
+stage "fuzzers (build-fuzz/, clang-14, ASan + UBSan + libFuzzer)"
 bash scripts/fuzz-build.sh
 ctest --test-dir build-fuzz -L fuzz -j "$jobs" --output-on-failure
+stage "done: every stage passed"
