@@ -88,9 +88,54 @@ inline bool beyond(const double* box, double tx, double ty, double tz, double re
     return gx * gx + gy * gy + gz * gz >= reach_sq;
 }
 
-// Fills spans for atoms [a0, a1) and ranges [0, min(count, pruned_ranges)), one at a time.
-void trim_scalar(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
-                 const CandidateRange* ranges, std::uint32_t count, Spans& spans) {
+// Candidates [b, e) of a range (b >= e: none).
+struct Candidates {
+    std::uint32_t b, e;
+};
+
+// The candidates of range q (ranges[q] = r) that atom a tests: a half list takes only b > a in
+// the own range, and where the boxes prune (Pruned, spans from a trim) the cells at either end
+// of the range whose boxes lie beyond the cutoff's reach are left out (they hold no pair of a, so
+// the pairs and their order stay the same).
+template <bool Pruned>
+inline Candidates candidates(const RangeScanInput& in, std::uint32_t a, std::uint32_t a0,
+                             const CandidateRange& r, std::uint32_t q, const Spans* spans) {
+    Candidates c{r.b0, r.b1};
+    if (Pruned && q < pruned_ranges) {
+        c = Candidates{spans->b[q][a - a0], spans->e[q][a - a0]};
+    }
+    if (r.own && in.half) {
+        c.b = std::max(c.b, a + 1);
+    }
+    return c;
+}
+
+// The distance tests a call makes: every candidate of every range for every atom, less what
+// the boxes leave out (counted here, once per call, rather than in the kernels' loops).
+std::uint64_t tests_made(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
+                         const CandidateRange* ranges, std::uint32_t count, const Spans* spans) {
+    std::uint64_t tests = 0;
+    for (std::uint32_t q = 0; q < count; ++q) {
+        const CandidateRange& r = ranges[q];
+        if ((spans != nullptr && q < pruned_ranges) || (r.own && in.half)) {
+            for (std::uint32_t a = a0; a < a1; ++a) {
+                const Candidates c = spans != nullptr ? candidates<true>(in, a, a0, r, q, spans)
+                                                      : candidates<false>(in, a, a0, r, q, spans);
+                tests += c.b < c.e ? c.e - c.b : 0;
+            }
+        } else {
+            tests += std::uint64_t(a1 - a0) * (r.b1 - r.b0);
+        }
+    }
+    return tests;
+}
+
+// Fills spans for atoms [a0, a1) and ranges [0, min(count, pruned_ranges)), one at a time;
+// returns the tests left to make. (Out of line like the vector versions: inlined, it lets GCC 12
+// take the spans it fills for uninitialised where tests_made() reads them.)
+[[gnu::noinline]] std::uint64_t trim_scalar(const RangeScanInput& in, std::uint32_t a0,
+                                            std::uint32_t a1, const CandidateRange* ranges,
+                                            std::uint32_t count, Spans& spans) {
     for (std::uint32_t q = 0; q < std::min(count, pruned_ranges); ++q) {
         const CandidateRange& r = ranges[q];
         for (std::uint32_t a = a0; a < a1; ++a) {
@@ -109,28 +154,7 @@ void trim_scalar(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
             spans.e[q][a - a0] = e;
         }
     }
-}
-
-// Candidates [b, e) of a range (b >= e: none).
-struct Candidates {
-    std::uint32_t b, e;
-};
-
-// The candidates of range q (ranges[q] = r) that atom a tests: a half list takes only b > a in
-// the own range, and with cell boxes the cells at either end of the range whose boxes lie beyond
-// the cutoff's reach are left out (they hold no pair of a, so the pairs and their order stay the
-// same).
-inline Candidates candidates(const RangeScanInput& in, std::uint32_t a, std::uint32_t a0,
-                             const CandidateRange& r, std::uint32_t q, bool pruned,
-                             const Spans& spans) {
-    Candidates c{r.b0, r.b1};
-    if (pruned && q < pruned_ranges) {
-        c = Candidates{spans.b[q][a - a0], spans.e[q][a - a0]};
-    }
-    if (r.own && in.half) {
-        c.b = std::max(c.b, a + 1);
-    }
-    return c;
+    return tests_made(in, a0, a1, ranges, count, &spans);
 }
 
 // Atom a against candidates [b, e) of range r, one at a time; returns the next free slot.
@@ -150,19 +174,14 @@ inline std::uint32_t scan_scalar(const RangeScanInput& in, std::uint32_t a, std:
     return n;
 }
 
+template <bool Pruned>
 std::uint32_t scan_generic(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
                            const CandidateRange* ranges, std::uint32_t count, const PairSlots& out,
-                           std::uint64_t& tests) {
-    Spans spans;
-    const bool pruned = worth_pruning(in, a0, a1, ranges, count);
-    if (pruned) {
-        trim_scalar(in, a0, a1, ranges, count, spans);
-    }
+                           const Spans* spans) {
     std::uint32_t n = 0;
     for (std::uint32_t a = a0; a < a1; ++a) {
         for (std::uint32_t q = 0; q < count; ++q) {
-            const Candidates c = candidates(in, a, a0, ranges[q], q, pruned, spans);
-            tests += c.b < c.e ? c.e - c.b : 0;
+            const Candidates c = candidates<Pruned>(in, a, a0, ranges[q], q, spans);
             n = scan_scalar(in, a, c.b, c.e, ranges[q], out, n);
         }
     }
@@ -179,9 +198,10 @@ __attribute__((target("avx2"))) inline __m256d gap(__m256d t, double lower, doub
 }
 
 // trim_scalar() with four atoms in the lanes of each half: the same terms, so the same spans.
-__attribute__((target("avx2"))) void trim_avx2(const RangeScanInput& in, std::uint32_t a0,
-                                               std::uint32_t a1, const CandidateRange* ranges,
-                                               std::uint32_t count, Spans& spans) {
+__attribute__((target("avx2"))) std::uint64_t trim_avx2(const RangeScanInput& in, std::uint32_t a0,
+                                                        std::uint32_t a1,
+                                                        const CandidateRange* ranges,
+                                                        std::uint32_t count, Spans& spans) {
     // The atoms, eight lanes (those past a1 repeat the last: their spans go unread).
     alignas(32) double ax[8], ay[8], az[8];
     for (std::uint32_t g = 0; g < 8; ++g) {
@@ -226,20 +246,16 @@ __attribute__((target("avx2"))) void trim_avx2(const RangeScanInput& in, std::ui
         _mm256_storeu_si256(reinterpret_cast<__m256i*>(spans.b[q]), b);
         _mm256_storeu_si256(reinterpret_cast<__m256i*>(spans.e[q]), e);
     }
+    return tests_made(in, a0, a1, ranges, count, &spans);
 }
 
 // AVX2: four candidates at a time, the hits of a group stored one by one through store_hit().
-__attribute__((target("avx2"))) std::uint32_t scan_avx2(const RangeScanInput& in, std::uint32_t a0,
-                                                        std::uint32_t a1,
-                                                        const CandidateRange* ranges,
-                                                        std::uint32_t count, const PairSlots& out,
-                                                        std::uint64_t& tests) {
+template <bool Pruned>
+__attribute__((target("avx2"))) std::uint32_t
+scan_avx2(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
+          const CandidateRange* ranges, std::uint32_t count, const PairSlots& out,
+          const Spans* spans) {
     const __m256d vcut = _mm256_set1_pd(in.cutoff_sq);
-    Spans spans;
-    const bool pruned = worth_pruning(in, a0, a1, ranges, count);
-    if (pruned) {
-        trim_avx2(in, a0, a1, ranges, count, spans);
-    }
     std::uint32_t n = 0;
     for (std::uint32_t a = a0; a < a1; ++a) {
         const __m256d vax = _mm256_set1_pd(in.x[a]), vay = _mm256_set1_pd(in.y[a]),
@@ -248,8 +264,7 @@ __attribute__((target("avx2"))) std::uint32_t scan_avx2(const RangeScanInput& in
             const CandidateRange& r = ranges[q];
             const __m256d vvx = _mm256_set1_pd(r.v[0]), vvy = _mm256_set1_pd(r.v[1]),
                           vvz = _mm256_set1_pd(r.v[2]);
-            const Candidates c = candidates(in, a, a0, r, q, pruned, spans);
-            tests += c.b < c.e ? c.e - c.b : 0;
+            const Candidates c = candidates<Pruned>(in, a, a0, r, q, spans);
             std::uint32_t b = c.b;
             for (; b + 4 <= c.e; b += 4) {
                 const __m256d dx =
@@ -314,7 +329,7 @@ __attribute__((target("avx512f"))) inline __m512d gap(__m512d t, double lower, d
 }
 
 // trim_scalar() with the atoms in the lanes: the same terms, so the same spans.
-__attribute__((target("avx512f,avx512vl,avx512dq"))) void
+__attribute__((target("avx512f,avx512vl,avx512dq"))) std::uint64_t
 trim_avx512(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
             const CandidateRange* ranges, std::uint32_t count, Spans& spans) {
     const __mmask8 atoms = __mmask8((1u << (a1 - a0)) - 1);
@@ -347,16 +362,18 @@ trim_avx512(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
         _mm256_storeu_si256(reinterpret_cast<__m256i*>(spans.b[q]), b);
         _mm256_storeu_si256(reinterpret_cast<__m256i*>(spans.e[q]), e);
     }
+    return tests_made(in, a0, a1, ranges, count, &spans);
 }
 
 // AVX-512: eight candidates at a time through masked loads; a block's hits are compressed in
 // registers and stored whole (the slots have kernel_slack room): i, j (turned with min/max in a
 // half list), d and, with every image 0, S as the range's shift or its negative per lane. D, and
 // S with images, are written per hit from the compressed lanes.
+template <bool Pruned>
 __attribute__((target("avx512f,avx512vl,avx512dq,bmi2"))) std::uint32_t
 scan_avx512(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
             const CandidateRange* ranges, std::uint32_t count, const PairSlots& out,
-            std::uint64_t& tests) {
+            const Spans* spans) {
     // Locals: the vector stores below may alias anything, so fields read through `in` and
     // `out` would be read again after each.
     const double* const x = in.x;
@@ -373,11 +390,6 @@ scan_avx512(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
     double* const ov = out.vectors;
     const bool squares = out.squares;
     const __m512d vcut = _mm512_set1_pd(cutoff_sq);
-    Spans spans;
-    const bool pruned = worth_pruning(in, a0, a1, ranges, count);
-    if (pruned) {
-        trim_avx512(in, a0, a1, ranges, count, spans);
-    }
     const __m256i lanes = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
     std::uint32_t n = 0;
     for (std::uint32_t a = a0; a < a1; ++a) {
@@ -386,11 +398,10 @@ scan_avx512(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
         const __m256i vi = _mm256_set1_epi32(std::int32_t(index[a]));
         for (std::uint32_t q = 0; q < count; ++q) {
             const CandidateRange& r = ranges[q];
-            const Candidates span = candidates(in, a, a0, r, q, pruned, spans);
+            const Candidates span = candidates<Pruned>(in, a, a0, r, q, spans);
             if (span.b >= span.e) {
                 continue;
             }
-            tests += span.e - span.b;
             const std::uint32_t b1 = span.e;
             const bool own = r.own, self_turn = r.self_turn;
             const std::int32_t rs[3] = {r.s[0], r.s[1], r.s[2]};
@@ -502,6 +513,26 @@ scan_avx512(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
 
 #endif
 
+// A kernel version: the blocks of `Blocks<true>` over the spans `trim` leaves where the boxes
+// pay, of `Blocks<false>` over whole ranges otherwise (no span looked up per atom and range).
+using Trim = std::uint64_t (*)(const RangeScanInput&, std::uint32_t, std::uint32_t,
+                               const CandidateRange*, std::uint32_t, Spans&);
+using Blocks = std::uint32_t (*)(const RangeScanInput&, std::uint32_t, std::uint32_t,
+                                 const CandidateRange*, std::uint32_t, const PairSlots&,
+                                 const Spans*);
+template <Trim trim, Blocks pruned, Blocks whole>
+std::uint32_t scan(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
+                   const CandidateRange* ranges, std::uint32_t count, const PairSlots& out,
+                   std::uint64_t& tests) {
+    if (worth_pruning(in, a0, a1, ranges, count)) {
+        Spans spans;
+        tests += trim(in, a0, a1, ranges, count, spans);
+        return pruned(in, a0, a1, ranges, count, out, &spans);
+    }
+    tests += tests_made(in, a0, a1, ranges, count, nullptr);
+    return whole(in, a0, a1, ranges, count, out, nullptr);
+}
+
 } // namespace
 
 std::vector<RangeKernelVersion> range_kernels() {
@@ -510,13 +541,13 @@ std::vector<RangeKernelVersion> range_kernels() {
     __builtin_cpu_init();
     if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
         __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("bmi2")) {
-        out.push_back({"avx512", scan_avx512});
+        out.push_back({"avx512", scan<trim_avx512, scan_avx512<true>, scan_avx512<false>>});
     }
     if (__builtin_cpu_supports("avx2")) {
-        out.push_back({"avx2", scan_avx2});
+        out.push_back({"avx2", scan<trim_avx2, scan_avx2<true>, scan_avx2<false>>});
     }
 #endif
-    out.push_back({"generic", scan_generic});
+    out.push_back({"generic", scan<trim_scalar, scan_generic<true>, scan_generic<false>>});
     return out;
 }
 
