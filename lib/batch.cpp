@@ -70,6 +70,23 @@ void shift_indices(PairColumns& c, std::size_t start, std::uint32_t shift) {
     }
 }
 
+// Copies `count` pairs of `from` from its pair `at` to `to` from its pair `to_at` (the columns
+// `to` holds, sized already).
+void copy_pairs(const PairColumns& from, std::size_t at, std::size_t count, PairColumns& to,
+                std::size_t to_at) {
+    const auto copy = [&](const auto& source, auto& target, std::size_t width) {
+        if (!source.empty()) {
+            std::copy_n(source.begin() + std::ptrdiff_t(width * at), width * count,
+                        target.begin() + std::ptrdiff_t(width * to_at));
+        }
+    };
+    copy(from.i, to.i, 1);
+    copy(from.j, to.j, 1);
+    copy(from.shifts, to.shifts, 3);
+    copy(from.distances, to.distances, 1);
+    copy(from.vectors, to.vectors, 3);
+}
+
 using detail::run_in_threads; // detail/parallel.hpp
 
 } // namespace
@@ -218,7 +235,8 @@ void compute_neighbors_batch(const BatchStructure* structures, std::size_t count
             limits.fail_size(total);
         }
 
-        // Join the other runs' columns after run 0's, each run copied by its own thread.
+        // Join the other runs' columns after run 0's: their pairs, in structure order, cut into
+        // one equal piece per thread.
         if (runs > 1) {
             PairColumns& c = out.columns_;
             c.i.resize(total);
@@ -232,14 +250,17 @@ void compute_neighbors_batch(const BatchStructure* structures, std::size_t count
             if (q.vectors) {
                 c.vectors.resize(3 * total);
             }
-            run_in_threads(runs - 1, [&](std::size_t k) {
-                const PairColumns& from = workers[k + 1].columns;
-                const std::ptrdiff_t at = std::ptrdiff_t(run_start[k + 1]);
-                std::copy(from.i.begin(), from.i.end(), c.i.begin() + at);
-                std::copy(from.j.begin(), from.j.end(), c.j.begin() + at);
-                std::copy(from.shifts.begin(), from.shifts.end(), c.shifts.begin() + 3 * at);
-                std::copy(from.distances.begin(), from.distances.end(), c.distances.begin() + at);
-                std::copy(from.vectors.begin(), from.vectors.end(), c.vectors.begin() + 3 * at);
+            const std::size_t first = run_start[1], joined = total - first;
+            run_in_threads(runs, [&](std::size_t k) {
+                const std::size_t lo = first + joined * k / runs;
+                const std::size_t hi = first + joined * (k + 1) / runs;
+                for (std::size_t t = 1; t < runs; ++t) {
+                    const std::size_t begin = std::max(lo, run_start[t]);
+                    const std::size_t end = std::min(hi, run_start[t] + workers[t].columns.size());
+                    if (begin < end) {
+                        copy_pairs(workers[t].columns, begin - run_start[t], end - begin, c, begin);
+                    }
+                }
             });
         }
 
