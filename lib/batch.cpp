@@ -209,6 +209,7 @@ void compute_neighbors_batch(const BatchStructure* structures, std::size_t count
         }
     };
 
+    const detail::TeamScope team(runs); // its helpers search the runs, then join them
     try {
         run_in_threads(runs, run);
         const auto lowest = std::min_element(failed_at.begin(), failed_at.end());
