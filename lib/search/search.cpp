@@ -98,6 +98,7 @@ void build_search(SearchState& s, const Box& caller_box, PointsView positions, s
     wrap_positions(s.frame, positions, threads, wrapped);
     if (!(cutoff > 0) || n == 0 || (options.query && options.query->empty())) {
         s.atoms = AtomTable();
+        s.wrapped = WrappedPositions();
         return; // no pair can count: an empty search
     }
     const BuildPlan plan = plan_build(options, s.frame.box(), wrapped, cutoff, s.search_radius,
