@@ -98,11 +98,13 @@ class DenseBackend final : public Backend {
                 std::uint32_t count = 0;
                 for (const InnerRow& row : inner_rows_) {
                     CandidateRange& r = inner[count];
-                    r.b0 = sorted_.cell_start(std::size_t(std::ptrdiff_t(c1) + row.lo));
-                    r.b1 = sorted_.cell_end(std::size_t(std::ptrdiff_t(c1) + row.hi));
+                    const auto first = std::size_t(std::ptrdiff_t(c1) + row.lo);
+                    const auto last = std::size_t(std::ptrdiff_t(c1) + row.hi);
+                    r.b0 = sorted_.cell_start(first);
+                    r.b1 = sorted_.cell_end(last);
                     r.own = row.own;
-                    r.c0 = std::uint32_t(std::ptrdiff_t(c1) + row.lo);
-                    r.c1 = std::uint32_t(std::ptrdiff_t(c1) + row.hi);
+                    r.c0 = std::uint32_t(first);
+                    r.c1 = std::uint32_t(last);
                     count += r.b0 != r.b1 ? 1 : 0;
                 }
                 scan.cell(begin1, end1, inner.data(), count);

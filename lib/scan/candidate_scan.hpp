@@ -248,8 +248,16 @@ class CandidateScanner {
         if (count == 0) {
             return;
         }
+        tests_ += std::uint64_t(a1 - a0) * candidates;
+        for (std::uint32_t q = 0; q < count && half_; ++q) {
+            for (std::uint32_t a = a0; a < a1 && list[q].own; ++a) { // a half list skips b <= a
+                tests_ -= std::min(std::max(a + 1, list[q].b0), list[q].b1) - list[q].b0;
+            }
+        }
+        std::uint64_t left_out = 0;
         const PairSink::Slots out = sink_.claim((a1 - a0) * candidates + kernel_slack);
-        sink_.commit(range_kernel_(range_input_, a0, a1, list, count, out, tests_));
+        sink_.commit(range_kernel_(range_input_, a0, a1, list, count, out, left_out));
+        tests_ -= left_out;
     }
 
     static ImageShift image_shift(const CandidateRange& r) {

@@ -110,29 +110,24 @@ inline Candidates candidates(const RangeScanInput& in, std::uint32_t a, std::uin
     return c;
 }
 
-// The distance tests a call makes: every candidate of every range for every atom, less what
-// the boxes leave out (counted here, once per call, rather than in the kernels' loops).
-std::uint64_t tests_made(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
-                         const CandidateRange* ranges, std::uint32_t count, const Spans* spans) {
-    std::uint64_t tests = 0;
-    for (std::uint32_t q = 0; q < count; ++q) {
-        const CandidateRange& r = ranges[q];
-        if ((spans != nullptr && q < pruned_ranges) || (r.own && in.half)) {
-            for (std::uint32_t a = a0; a < a1; ++a) {
-                const Candidates c = spans != nullptr ? candidates<true>(in, a, a0, r, q, spans)
-                                                      : candidates<false>(in, a, a0, r, q, spans);
-                tests += c.b < c.e ? c.e - c.b : 0;
-            }
-        } else {
-            tests += std::uint64_t(a1 - a0) * (r.b1 - r.b0);
+// The candidates the spans leave out, summed over the atoms and the pruned ranges of a call.
+std::uint64_t spared(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
+                     const CandidateRange* ranges, std::uint32_t count, const Spans& spans) {
+    std::uint64_t out = 0;
+    for (std::uint32_t q = 0; q < std::min(count, pruned_ranges); ++q) {
+        for (std::uint32_t a = a0; a < a1; ++a) {
+            const Candidates whole = candidates<false>(in, a, a0, ranges[q], q, nullptr);
+            const Candidates kept = candidates<true>(in, a, a0, ranges[q], q, &spans);
+            out += (whole.b < whole.e ? whole.e - whole.b : 0) -
+                   (kept.b < kept.e ? kept.e - kept.b : 0);
         }
     }
-    return tests;
+    return out;
 }
 
 // Fills spans for atoms [a0, a1) and ranges [0, min(count, pruned_ranges)), one at a time;
-// returns the tests left to make. (Out of line like the vector versions: inlined, it lets GCC 12
-// take the spans it fills for uninitialised where tests_made() reads them.)
+// returns the candidates they leave out. (Out of line like the vector versions: inlined, it lets
+// GCC 12 take the spans it fills for uninitialised where spared() reads them.)
 [[gnu::noinline]] std::uint64_t trim_scalar(const RangeScanInput& in, std::uint32_t a0,
                                             std::uint32_t a1, const CandidateRange* ranges,
                                             std::uint32_t count, Spans& spans) {
@@ -154,7 +149,7 @@ std::uint64_t tests_made(const RangeScanInput& in, std::uint32_t a0, std::uint32
             spans.e[q][a - a0] = e;
         }
     }
-    return tests_made(in, a0, a1, ranges, count, &spans);
+    return spared(in, a0, a1, ranges, count, spans);
 }
 
 // Atom a against candidates [b, e) of range r, one at a time; returns the next free slot.
@@ -246,7 +241,7 @@ __attribute__((target("avx2"))) std::uint64_t trim_avx2(const RangeScanInput& in
         _mm256_storeu_si256(reinterpret_cast<__m256i*>(spans.b[q]), b);
         _mm256_storeu_si256(reinterpret_cast<__m256i*>(spans.e[q]), e);
     }
-    return tests_made(in, a0, a1, ranges, count, &spans);
+    return spared(in, a0, a1, ranges, count, spans);
 }
 
 // AVX2: four candidates at a time, the hits of a group stored one by one through store_hit().
@@ -362,7 +357,7 @@ trim_avx512(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
         _mm256_storeu_si256(reinterpret_cast<__m256i*>(spans.b[q]), b);
         _mm256_storeu_si256(reinterpret_cast<__m256i*>(spans.e[q]), e);
     }
-    return tests_made(in, a0, a1, ranges, count, &spans);
+    return spared(in, a0, a1, ranges, count, spans);
 }
 
 // AVX-512: eight candidates at a time through masked loads; a block's hits are compressed in
@@ -523,13 +518,12 @@ using Blocks = std::uint32_t (*)(const RangeScanInput&, std::uint32_t, std::uint
 template <Trim trim, Blocks pruned, Blocks whole>
 std::uint32_t scan(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
                    const CandidateRange* ranges, std::uint32_t count, const PairSlots& out,
-                   std::uint64_t& tests) {
+                   std::uint64_t& left_out) {
     if (worth_pruning(in, a0, a1, ranges, count)) {
         Spans spans;
-        tests += trim(in, a0, a1, ranges, count, spans);
+        left_out += trim(in, a0, a1, ranges, count, spans);
         return pruned(in, a0, a1, ranges, count, out, &spans);
     }
-    tests += tests_made(in, a0, a1, ranges, count, nullptr);
     return whole(in, a0, a1, ranges, count, out, nullptr);
 }
 
