@@ -610,3 +610,41 @@ TEST(DirectBackend, ReusedSearchFollowsEveryChangeOfBoxRadiusAndAtoms) {
     }
     EXPECT_GT(pairs, 10000u);
 }
+
+TEST(NeighborSearch, CellsOfHalfACutoffOnlyForManyNeighboursAndOneCutoff) {
+    // The automatic grid (cells_per_cutoff = 0) takes cells of half a cutoff only where the
+    // dense backend's range kernel gains from them: one cutoff for all atoms, no query, and
+    // enough neighbours per atom (policy/cost_model.hpp); else cells of one cutoff.
+    const Box box = Box::from_parameters(30, 30, 30, 90, 90, 90);
+    const double cutoff = 6; // a sphere of 905 A^3
+    const auto cells_of = [&](std::size_t atoms, NeighborOptions o) {
+        std::mt19937_64 rng(atoms);
+        std::uniform_real_distribution<double> u(0, 30);
+        std::vector<Eigen::Vector3d> x(atoms);
+        for (Eigen::Vector3d& p : x) {
+            p = Eigen::Vector3d(u(rng), u(rng), u(rng));
+        }
+        o.cutoff = o.radii.empty() ? cutoff : 0;
+        o.backend = SearchBackend::dense;
+        tricell::NeighborSearch search;
+        search.build(box, x, o);
+        return search.info().cells;
+    };
+    for (const bool half : {false, true}) {
+        SCOPED_TRACE(half ? "half" : "full");
+        NeighborOptions whole, halves, chosen;
+        whole.half = halves.half = chosen.half = half;
+        whole.cells_per_cutoff = 1;
+        halves.cells_per_cutoff = 2;
+        const std::size_t many = 6000, few = 1200; // 200 and 40 neighbours per atom
+        ASSERT_NE(cells_of(many, whole), cells_of(many, halves));
+        EXPECT_EQ(cells_of(many, chosen), cells_of(many, halves));
+        EXPECT_EQ(cells_of(few, chosen), cells_of(few, whole));
+        NeighborOptions radii = chosen; // per-atom radii take the general scan
+        radii.radii.assign(many, cutoff / 2);
+        EXPECT_EQ(cells_of(many, radii), cells_of(many, whole));
+        NeighborOptions query = chosen; // as does a subset search
+        query.query = std::vector<std::uint32_t>{0, 1, 2};
+        EXPECT_EQ(cells_of(many, query), cells_of(many, whole));
+    }
+}
