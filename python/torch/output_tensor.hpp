@@ -8,7 +8,8 @@
 // Fresh memory is zeroed by the kernel on first touch, which costs about as much as filling
 // it. So the deleter does not return a block to the system at once: it
 // keeps the last few freed blocks (at most block_cache_blocks of them, block_cache_bytes in
-// all), and the next output that fits one (needing at least half of it) takes it. A loop that
+// all), and the next output that fits one (at most a fifth smaller, so that a tensor never holds
+// much more memory than its size) takes it. A loop that
 // drops each call's tensors before the next call (a training step) thus writes into memory
 // already faulted in, and at most block_cache_bytes stay held between calls.
 #pragma once
@@ -27,17 +28,17 @@
 namespace tricell::torch_ops {
 
 constexpr std::size_t block_cache_blocks = 8;
-constexpr std::size_t block_cache_bytes = std::size_t(1) << 30;
+constexpr std::size_t block_cache_bytes = std::size_t(256) << 20;
 
 /// The freed large output blocks kept for reuse (see above).
 class BlockCache {
   public:
-    /// A kept block of at least `bytes` and at most twice that (the smallest such), or null.
+    /// A kept block of at least `bytes` and at most a fifth more (the smallest such), or null.
     void* take(std::size_t bytes, std::size_t& size) {
         std::lock_guard<std::mutex> lock(mutex_);
         auto best = blocks_.end();
         for (auto b = blocks_.begin(); b != blocks_.end(); ++b) {
-            if (b->second >= bytes && b->second / 2 <= bytes &&
+            if (b->second >= bytes && b->second <= bytes + bytes / 5 &&
                 (best == blocks_.end() || b->second < best->second)) {
                 best = b;
             }
