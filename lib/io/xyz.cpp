@@ -236,8 +236,9 @@ Structure parse_xyz(const std::string& text, const std::string& name, const Read
         line = lines.number();
         const std::vector<std::string_view> words = split_words(lines.next("an atom line"));
         if (words.size() < columns.count) {
-            lines.fail(line, "expected ", columns.count, " columns (Properties=", properties,
-                       ") for atom ", atom, ", got ", words.size());
+            lines.fail(line, "expected ", columns.count,
+                       " columns (Properties=", one_line(properties), ") for atom ", atom, ", got ",
+                       words.size());
         }
         const std::string_view token = words[columns.species];
         const std::string element = element_symbol(std::string(token), true);

@@ -127,3 +127,11 @@ TEST(XyzReaderErrors, AtomLines) {
 }
 
 } // namespace
+
+TEST(XyzReaderErrors, ControlCharactersOfTheCommentLineLeaveTheMessageOnOneLine) {
+    // A carriage return and a vertical tab inside a quoted Properties value (xyz_fuzzer): the
+    // message shows them as spaces.
+    EXPECT_THROW_MSG(xyz("1\nProperties=\"species:S:1:pos:R:3:\rfo\v:S:1\"\nC 0 0 0\n"), ParseError,
+                     "test.xyz:3: expected 5 columns (Properties=species:S:1:pos:R:3: fo :S:1) "
+                     "for atom 0, got 4");
+}
