@@ -153,23 +153,13 @@ template <class T> struct OwnedColumn {
     std::weak_ptr<ColumnRecycler> home;
 };
 
-// An array of the `width`-wide rows of `column`, which it takes over (no copy) unless the
-// buffer holds much more room than the column: then the array is a copy and the buffer goes back
-// to `recycler`, so that an array never keeps more than a fifth (and 16 KiB) of unused memory
-// alive (a small result after a large one would otherwise hold the large one's buffer).
+// An array of the `width`-wide rows of `column`, which it takes over (no copy).
 template <class T>
 py::array owned_column(PairArray<T>& column, PairArray<T> PairColumns::*which, std::size_t width,
                        const std::shared_ptr<ColumnRecycler>& recycler) {
     std::vector<py::ssize_t> shape{static_cast<py::ssize_t>(column.size() / width)};
     if (width > 1) {
         shape.push_back(static_cast<py::ssize_t>(width));
-    }
-    constexpr std::size_t slack = (std::size_t(16) << 10) / sizeof(T);
-    if (column.capacity() > column.size() + column.size() / 5 + slack) {
-        py::array_t<T> copy(shape);
-        std::copy(column.begin(), column.end(), copy.mutable_data());
-        recycler->give_back(which, column);
-        return std::move(copy);
     }
     auto* owned = new OwnedColumn<T>{std::move(column), which, recycler};
     py::capsule base(owned, [](void* p) {

@@ -183,32 +183,6 @@ def test_arrays_of_a_batch_are_the_callers_whatever_comes_next():
     assert not np.shares_memory(kept[4], kept[6]) and np.array_equal(kept[6], expected[6])
 
 
-def test_a_small_batch_after_a_large_one_keeps_no_large_buffer():
-    """An array handed over holds its own buffer only while that buffer is about its size: a
-    small result after a large one, whose dropped buffers come back for reuse, is a copy, and
-    the large buffers wait for the next large call, which takes them over again."""
-    rng = np.random.default_rng(5)
-    box = 20.0 * np.eye(3)
-    large = rng.random((4000, 3)) * 20.0
-    small = rng.random((40, 3)) * 6.0  # hundreds of pairs against the large one's 500 000
-    nl = tricell.NeighborList(4.0)
-
-    def batch(x):
-        return nl.compute_batch(x, box[None], True, "ijd", batch_ptr=np.array([0, len(x)]))
-
-    first = batch(large)
-    assert all(not a.flags.owndata for a in first[1:])  # taken over: a capsule owns the buffer
-    del first
-    few = batch(small)
-    assert len(few[1]) > 100
-    assert all(a.flags.owndata for a in few[1:])  # copies: the large buffers are not kept alive
-    assert all(np.array_equal(a, b) for a, b in zip(
-        few, nl.compute_batch(small, box[None], True, "ijd", batch_ptr=np.array([0, 40]),
-                              copy=False)))
-    again = batch(large)
-    assert all(not a.flags.owndata for a in again[1:])
-
-
 def test_concatenated_errors_name_the_argument_and_the_structure():
     rng = np.random.default_rng(0)
     x = rng.random((40, 3)) * 3
