@@ -23,7 +23,8 @@ void LinkedCellList::build(const std::vector<std::uint32_t>& cell_of, std::size_
 void SortedCellList::build_threaded(const std::vector<std::uint32_t>& cell_of,
                                     std::size_t cell_count, std::size_t threads) {
     const std::size_t n = cell_of.size();
-    std::vector<std::uint32_t> cursor(threads * cell_count, 0); // [t * cell_count + c]
+    std::vector<std::uint32_t>& cursor = cursor_; // [t * cell_count + c]
+    cursor.assign(threads * cell_count, 0);
     detail::parallel_ranges(n, threads, [&](std::size_t begin, std::size_t end, std::size_t t) {
         std::uint32_t* count = cursor.data() + t * cell_count;
         for (std::size_t i = begin; i < end; ++i) {

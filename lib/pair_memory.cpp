@@ -1,9 +1,13 @@
-// Memory for the columns of a neighbour list. A large list is written once per call through
-// hundreds of megabytes, and with 4 KB pages every few pairs cross into a page whose
-// translation is not cached; in 2 MB pages the translations of a whole list fit the TLB. So an
-// array of at least huge_page bytes is aligned to and rounded up to whole huge pages and advised
-// to the kernel as huge-page memory (Linux transparent huge pages in "madvise" mode, Debian's
-// default, gives huge pages only to memory advised so). Smaller arrays come from operator new.
+// Memory for the columns of a neighbour list and for the search's large per-atom and per-cell
+// arrays (PairArray, pair_columns.hpp). A large list is written once per call through hundreds
+// of megabytes, and with 4 KB pages every few pairs cross into a page whose translation is not
+// cached; in 2 MB pages the translations of a whole list fit the TLB. Each fresh page also costs
+// a fault, which zeroes it, and on a virtual machine a small page's fault can take ~10 us: an
+// array of 10^7 positions costs 6 * 10^4 faults each time it is allocated anew in small pages,
+// about a hundred in huge ones. So an array of at least huge_page bytes is aligned to and
+// rounded up to whole huge pages and advised to the kernel as huge-page memory (Linux
+// transparent huge pages in "madvise" mode, Debian's default, gives huge pages only to memory
+// advised so). Smaller arrays come from operator new.
 #include <cstdlib>
 #include <new>
 

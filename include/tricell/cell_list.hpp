@@ -60,6 +60,7 @@ class TRICELL_API SortedCellList {
                         std::size_t threads);
     std::vector<std::uint32_t> start_; // cell_count + 1 offsets
     std::vector<std::uint32_t> order_;
+    std::vector<std::uint32_t> cursor_; // the threaded sort's (cell, thread) table, kept for reuse
 };
 
 } // namespace tricell

@@ -28,12 +28,12 @@ namespace tricell::detail {
 
 /// What every backend is given to bin: the search frame and the wrapped fractional positions.
 struct BinningInput {
-    const Box& frame;                               ///< the search frame (maybe reduced)
-    const std::vector<Eigen::Vector3d>& fractional; ///< in [0, 1) along periodic axes
-    Eigen::Vector3d lower, upper;                   ///< extent of the positions, per axis
-    double search_radius;                           ///< largest cutoff plus a rounding margin
-    const NeighborOptions& options;                 ///< tuning knobs (half, leaf_size, ...)
-    const BuildPlan& plan;                          ///< threads, the cell cap, the pruning
+    const Box& frame;                             ///< the search frame (maybe reduced)
+    const PairArray<Eigen::Vector3d>& fractional; ///< in [0, 1) along periodic axes
+    Eigen::Vector3d lower, upper;                 ///< extent of the positions, per axis
+    double search_radius;                         ///< largest cutoff plus a rounding margin
+    const NeighborOptions& options;               ///< tuning knobs (half, leaf_size, ...)
+    const BuildPlan& plan;                        ///< threads, the cell cap, the pruning
 };
 
 class Backend {

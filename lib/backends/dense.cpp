@@ -28,15 +28,15 @@ class DenseBackend final : public Backend {
     void bin(const BinningInput& input, std::vector<std::uint32_t>& order) override {
         const std::size_t n = input.fractional.size();
         cells_.build(input, input.plan.cell_cap, true);
-        std::vector<std::uint32_t> cell_of(n);
+        cell_of_.resize(n);
         parallel_ranges(
             n, input.plan.threads, [&](std::size_t begin, std::size_t end, std::size_t) {
                 for (std::size_t i = begin; i < end; ++i) {
-                    cell_of[i] =
+                    cell_of_[i] =
                         static_cast<std::uint32_t>(cells_.grid().cell_of(input.fractional[i]));
                 }
             });
-        sorted_.build(cell_of, cells_.grid().cell_count(), input.plan.threads);
+        sorted_.build(cell_of_, cells_.grid().cell_count(), input.plan.threads);
         order = sorted_.order();
         // The rows as flat cell offsets, for the cells whose every row lies inside the grid.
         const std::array<int, 3>& dims = cells_.grid().dims();
@@ -225,13 +225,14 @@ class DenseBackend final : public Backend {
     }
 
     GridNeighbourhood cells_;
+    std::vector<std::uint32_t> cell_of_; // kept between builds: no fresh pages to fault in
     SortedCellList sorted_;
     std::vector<InnerRow> inner_rows_;
     std::array<int, 3> reach_{};
     bool wraps_ = false; ///< the stencil reaches round a periodic axis onto its own cells
     bool boxes_pay_ = false;
     mutable std::unique_ptr<std::once_flag> boxes_once_;
-    mutable std::vector<double> boxes_;
+    mutable PairArray<double> boxes_; // 6 per cell, in huge pages (48 bytes a cell)
     mutable std::vector<std::uint32_t> starts_;
     mutable double bound_ = 0;
 };

@@ -129,7 +129,7 @@ class OctreeBackend final : public Backend {
             const Node& leaf = nodes_[leaves_[l]];
             out.atoms[l] = double(leaf.end - leaf.begin);
         }
-        out.volume = leaf_volume_;
+        out.volume.assign(leaf_volume_.begin(), leaf_volume_.end());
     }
 
     // The average number of candidate leaves, from a few evenly spaced leaves.
@@ -269,7 +269,7 @@ class OctreeBackend final : public Backend {
     // Splits node `id` (atoms order[begin, end)) until its leaves hold at most leaf_size_ atoms.
     // `region` is the part of space the node stands for (its leaves' regions tile the root's).
     void split(std::uint32_t id, int depth, const Eigen::Vector3d& region_lo,
-               const Eigen::Vector3d& region_hi, const std::vector<Eigen::Vector3d>& frac,
+               const Eigen::Vector3d& region_hi, const PairArray<Eigen::Vector3d>& frac,
                std::vector<std::uint32_t>& order) {
         const std::uint32_t begin = nodes_[id].begin, end = nodes_[id].end;
         Eigen::Vector3d lo = frac[order[begin]], hi = lo;

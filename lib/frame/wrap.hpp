@@ -19,7 +19,7 @@ namespace tricell::detail {
 /// Fractional coordinates in [0, 1) along periodic axes, the image each came from, and the
 /// extent of the wrapped coordinates per axis.
 struct WrappedPositions {
-    std::vector<Eigen::Vector3d> fractional;
+    PairArray<Eigen::Vector3d> fractional;
     PairArray<std::int32_t> image; ///< 3 per atom
     Eigen::Vector3d lower = Eigen::Vector3d::Zero(), upper = Eigen::Vector3d::Zero();
 };

@@ -141,7 +141,7 @@ inline double expected_pairs(double atoms, double volume, double sphere) {
 
 /// Splits units 0..W.size()-1 into at most `parts` contiguous chunks of about equal total work.
 /// Returns the chunk boundaries: bounds[0] = 0, bounds.back() = W.size().
-inline std::vector<std::size_t> split_work(const std::vector<double>& work, std::size_t parts) {
+template <class Work> std::vector<std::size_t> split_work(const Work& work, std::size_t parts) {
     std::vector<std::size_t> bounds{0};
     const std::size_t units = work.size();
     const double total = std::accumulate(work.begin(), work.end(), 0.0);

@@ -38,7 +38,7 @@ std::size_t cell_cap(const NeighborOptions& options, std::size_t atoms) {
 }
 
 // The concrete backend for `automatic` (see the comment atop policy.hpp).
-SearchBackend automatic_backend(const Box& box, const std::vector<Eigen::Vector3d>& fractional,
+SearchBackend automatic_backend(const Box& box, const PairArray<Eigen::Vector3d>& fractional,
                                 const Eigen::Vector3d& lower, const Eigen::Vector3d& upper,
                                 double search_radius, double cells_per_cutoff,
                                 const NeighborOptions& options) {
@@ -155,7 +155,7 @@ double possible_pairs(const Box& box, std::size_t atoms, std::size_t query_atoms
 // The batches of `units` units with `expected[u]` expected pairs and `work[u]` occupancy work
 // each, for `threads` threads (at least four batches per thread), of a list that holds at most
 // `most_pairs`.
-BatchPlan plan_batches(const std::vector<double>& work, const std::vector<double>& expected,
+BatchPlan plan_batches(const PairArray<double>& work, const PairArray<double>& expected,
                        std::size_t threads, double most_pairs) {
     // About batch_pairs pairs a batch: with i, j, S, d about 230 KB of columns, which stay in
     // the core's L2 until they are copied out.
@@ -256,7 +256,7 @@ ComputePlan plan_compute(const NeighborOptions& options, const ComputeInput& inp
     const bool subset = input.query_atoms != 0;
     const double share =
         subset ? double(input.query_atoms) / double(input.atoms) : (options.half ? 0.5 : 1.0);
-    std::vector<double> expected(units);
+    PairArray<double> expected(units);
     double total = 0;
     for (std::size_t u = 0; u < units; ++u) {
         expected[u] = share * expected_pairs(input.occupancy.atoms[u],
@@ -268,7 +268,7 @@ ComputePlan plan_compute(const NeighborOptions& options, const ComputeInput& inp
     }
     plan.room = pair_room(total, limits.pairs() == 0 ? 0 : limits.pairs() + input.claim);
     if (plan.threads > 1) {
-        std::vector<double> work(units);
+        PairArray<double> work(units);
         const double neighbours = input.neighbours();
         for (std::size_t u = 0; u < units; ++u) {
             work[u] = occupancy_work(input.occupancy.atoms[u], neighbours);

@@ -32,8 +32,8 @@ namespace tricell::detail {
 /// Occupancy of every work unit of a backend: its atoms and its fractional volume (for the work
 /// and pair-count estimates from the occupancy moments, cost_model.hpp).
 struct UnitOccupancy {
-    std::vector<double> atoms;
-    std::vector<double> volume;
+    PairArray<double> atoms;
+    PairArray<double> volume;
 };
 
 /// The most threads any phase of a call may use (the size of the call's thread team).

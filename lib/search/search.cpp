@@ -253,7 +253,7 @@ UnitWork NeighborSearch::unit_work() const {
     detail::UnitOccupancy occupancy;
     s.backend->occupancy(occupancy);
     const std::size_t units = s.backend->unit_count();
-    work.atoms = occupancy.atoms;
+    work.atoms.assign(occupancy.atoms.begin(), occupancy.atoms.end());
     work.estimated.resize(units);
     work.measured.resize(units);
     auto discard = [](void*, const PairBlock&) {};

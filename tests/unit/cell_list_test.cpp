@@ -53,7 +53,9 @@ TEST(CellLists, EmptyInputGivesEmptyCells) {
 
 TEST(CellLists, ThreadedSortEqualsAStableSortByCell) {
     // Oracle: std::stable_sort of the atom indices by cell. Cell counts from 1 (every atom in one
-    // cell) to more cells than atoms (most empty), atom counts from 0, threads from 1 to 5.
+    // cell) to more cells than atoms (most empty), atom counts from 0, threads from 1 to 5; once
+    // by a fresh list and once by one list rebuilt every time (it keeps its tables).
+    tricell::SortedCellList reused;
     for (std::uint64_t seed = 0; seed < 200; ++seed) {
         SCOPED_TRACE(seed);
         std::mt19937_64 rng(seed);
@@ -80,5 +82,10 @@ TEST(CellLists, ThreadedSortEqualsAStableSortByCell) {
             }
         }
         ASSERT_EQ(sorted.cell_end(cells - 1), atoms);
+        reused.build(cell_of, cells, threads);
+        ASSERT_EQ(reused.order(), expected) << threads << " threads, reused";
+        for (std::size_t c = 0; c <= cells; ++c) {
+            ASSERT_EQ(reused.cell_start(c), sorted.cell_start(c));
+        }
     }
 }

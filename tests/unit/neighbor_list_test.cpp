@@ -611,6 +611,61 @@ TEST(DirectBackend, ReusedSearchFollowsEveryChangeOfBoxRadiusAndAtoms) {
     EXPECT_GT(pairs, 10000u);
 }
 
+// A search keeps its large buffers from one build to the next (the dense grid's cell of each
+// atom and its threaded sort's table, the atom table, the cell boxes), so that a repeated search
+// writes into memory already in use. Reused over systems that grow and shrink, with thread
+// counts and list kinds that change, it must give, every time, exactly the list of a fresh
+// search, and every pair of the brute force.
+TEST(NeighborSearch, ReusedDenseSearchEqualsAFreshOneAsSizesAndThreadsChange) {
+    std::mt19937_64 rng(29);
+    std::uniform_real_distribution<double> unit(0, 1);
+    tricell::NeighborSearch reused;
+    NeighborList list, reference;
+    std::size_t pairs = 0;
+    for (int step = 0; step < 40; ++step) {
+        SCOPED_TRACE(step);
+        const std::size_t n = 1 + rng() % 3000;
+        const double cutoff = 2 + 2 * unit(rng);
+        Eigen::Matrix3d h = tricell::testing::random_box_matrix(rng, 1, 1.5, 0.3);
+        h *= std::cbrt(double(n) / (0.02 + 0.08 * unit(rng)) / std::abs(h.determinant()));
+        std::vector<Eigen::Vector3d> x(n);
+        for (auto& r : x) {
+            r = h * Eigen::Vector3d(unit(rng), unit(rng), unit(rng));
+        }
+        NeighborOptions o = with_cutoff(cutoff);
+        o.backend = SearchBackend::dense;
+        o.threads = int(1 + rng() % 3);
+        o.half = rng() % 2 == 0;
+        const Box box = Box::from_columns(h);
+        reused.build(box, x, o);
+        reused.compute(list);
+        tricell::NeighborSearch fresh;
+        fresh.build(box, x, o);
+        fresh.compute(reference);
+        ASSERT_EQ(list.size(), reference.size());
+        EXPECT_EQ(list.i(), reference.i());
+        EXPECT_EQ(list.j(), reference.j());
+        EXPECT_EQ(list.shifts(), reference.shifts());
+        EXPECT_EQ(list.distances(), reference.distances());
+        EXPECT_EQ(list.vectors(), reference.vectors());
+        if (n <= 800) {
+            const auto all = tricell::testing::brute_force_pairs(box, x, cutoff);
+            const auto expected = o.half ? tricell::testing::canonical_half(all) : all;
+            const auto found = tricell::testing::to_map(list);
+            std::size_t wrong = 0;
+            for (const auto& [key, value] : expected) {
+                wrong += std::abs(value.distance - cutoff) > 1e-9 && found.count(key) == 0;
+            }
+            for (const auto& [key, value] : found) {
+                wrong += std::abs(value.distance - cutoff) > 1e-9 && expected.count(key) == 0;
+            }
+            EXPECT_EQ(wrong, 0u) << "pairs missing or extra against the brute force";
+        }
+        pairs += list.size();
+    }
+    EXPECT_GT(pairs, 100000u);
+}
+
 TEST(NeighborSearch, CellsOfHalfACutoffOnlyForManyNeighboursAndOneCutoff) {
     // The automatic grid (cells_per_cutoff = 0) takes cells of half a cutoff only where the
     // dense backend's range kernel gains from them: one cutoff for all atoms, no query, and
