@@ -27,6 +27,16 @@ NeighborOptions with_cutoff(double cutoff) {
     return o;
 }
 const Box cube10 = Box::from_parameters(10, 10, 10, 90, 90, 90);
+
+// Two stored lists equal column by column, d and D bit for bit.
+void expect_identical(const NeighborList& expected, const NeighborList& actual) {
+    ASSERT_EQ(expected.size(), actual.size());
+    EXPECT_EQ(expected.i(), actual.i());
+    EXPECT_EQ(expected.j(), actual.j());
+    EXPECT_EQ(expected.shifts(), actual.shifts());
+    EXPECT_EQ(expected.distances(), actual.distances());
+    EXPECT_EQ(expected.vectors(), actual.vectors());
+}
 } // namespace
 
 TEST(NeighborList, TwoAtomsAcrossTheBoundary) {
@@ -588,12 +598,7 @@ TEST(DirectBackend, ReusedSearchFollowsEveryChangeOfBoxRadiusAndAtoms) {
         search.build(box, x, direct);
         search.compute(list);
         tricell::compute_neighbors(box, x, dense, reference);
-        ASSERT_EQ(list.size(), reference.size());
-        EXPECT_EQ(list.i(), reference.i());
-        EXPECT_EQ(list.j(), reference.j());
-        EXPECT_EQ(list.shifts(), reference.shifts());
-        EXPECT_EQ(list.distances(), reference.distances());
-        EXPECT_EQ(list.vectors(), reference.vectors());
+        expect_identical(reference, list);
         const auto expected = tricell::testing::brute_force_pairs(box, x, cutoff);
         const auto found = tricell::testing::to_map(list);
         for (const auto& [key, value] : expected) {
@@ -642,12 +647,7 @@ TEST(NeighborSearch, ReusedDenseSearchEqualsAFreshOneAsSizesAndThreadsChange) {
         tricell::NeighborSearch fresh;
         fresh.build(box, x, o);
         fresh.compute(reference);
-        ASSERT_EQ(list.size(), reference.size());
-        EXPECT_EQ(list.i(), reference.i());
-        EXPECT_EQ(list.j(), reference.j());
-        EXPECT_EQ(list.shifts(), reference.shifts());
-        EXPECT_EQ(list.distances(), reference.distances());
-        EXPECT_EQ(list.vectors(), reference.vectors());
+        expect_identical(reference, list);
         if (n <= 800) {
             const auto all = tricell::testing::brute_force_pairs(box, x, cutoff);
             const auto expected = o.half ? tricell::testing::canonical_half(all) : all;
