@@ -70,8 +70,10 @@ ListMemory list_memory(const NeighborOptions& options) {
         m.per_atom = 16;                 // the offsets, a cursor
         m.order = "sort";
     } else if (options.grouped) {
-        m.order_per_pair = m.widest; // one column being scattered
-        m.per_atom = 16;
+        // One column being regrouped, and the index of the runs it is gathered by (at most 12
+        // bytes a run of 16 pairs on average).
+        m.order_per_pair = m.widest + 1;
+        m.per_atom = 16; // the offsets, each atom's next run (or pair)
         m.order = "group";
     }
     return m;

@@ -89,8 +89,8 @@ TEST(MaxBytes, TheModelCountsEachColumnAndTheOrdersWorkingSpace) {
     o.quantities = tricell::Quantities{false, false, false};
     m = tricell::detail::list_memory(o);
     EXPECT_EQ(m.columns(), "i, j");
-    EXPECT_EQ(m.peak(1000, 10), 1000 * (8 + 4) + 10 * 16);
-    EXPECT_EQ(m.rates(), "8 bytes a pair of i, j + 4 a pair to group them + 16 an atom");
+    EXPECT_EQ(m.peak(1000, 10), 1000 * (8 + 4 + 1) + 10 * 16);
+    EXPECT_EQ(m.rates(), "8 bytes a pair of i, j + 5 a pair to group them + 16 an atom");
     o.grouped = false;
     o.sorted = true; // sorting stores S
     EXPECT_EQ(tricell::detail::list_memory(o).columns(), "i, j, S");
