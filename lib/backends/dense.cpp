@@ -3,9 +3,13 @@
 // paired with the stencil row by row. With c varying fastest, the neighbour cells of one row are
 // consecutive in the sorted order, so a row is one contiguous range of atoms, split only where
 // it wraps around the c axis (each piece with its own image shift). The work units are cells.
-// Each range names its first and last cell, and the first visit after a binning takes the
-// bounding box of every cell's atoms (from the scanner's positions, once, whichever thread comes
-// first), by which the range kernel leaves out the cells out of an atom's reach.
+// Where the range kernel prunes (more atoms than cells, a stencil that does not wrap), the atoms
+// of each cell are sorted along c and cut into clusters of at most cluster_atoms, as the
+// cluster-pair search of Pall & Hess (2013) cuts its grid columns: a row then runs along c
+// cluster by cluster, each a thin slab of its cell. Each range names its first and last
+// cluster, and the first visit after a binning takes the bounding box of every cluster's atoms
+// (from the scanner's positions, once, whichever thread comes first), by which the range kernel
+// leaves out the clusters at either end of a row beyond an atom's reach.
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -22,6 +26,9 @@
 namespace tricell::detail {
 
 namespace {
+
+// Atoms per cluster at most: the boxes the range kernel tests (see build_boxes()).
+constexpr std::uint32_t cluster_atoms = 8;
 
 class DenseBackend final : public Backend {
   public:
@@ -61,6 +68,9 @@ class DenseBackend final : public Backend {
         // wrap (its pieces go through the scanner's ranges(), unpruned).
         boxes_pay_ = !wraps_ && n >= cells_.grid().cell_count();
         boxes_once_ = std::make_unique<std::once_flag>();
+        if (boxes_pay_) {
+            sort_along_rows(input, order);
+        }
     }
 
     std::size_t unit_count() const override { return cells_.grid().cell_count(); }
@@ -78,7 +88,7 @@ class DenseBackend final : public Backend {
     void visit(std::size_t begin, std::size_t end, CandidateScanner& scan) const override {
         if (boxes_pay_) {
             std::call_once(*boxes_once_, [&] { build_boxes(scan); });
-            scan.prune_by_cells(boxes_.data(), starts_.data(), bound_);
+            scan.prune_by_clusters(boxes_.data(), starts_.data(), bound_);
         }
         const std::array<int, 3>& n = cells_.grid().dims();
         const bool periodic_c = cells_.grid().periodicity()[2];
@@ -103,8 +113,8 @@ class DenseBackend final : public Backend {
                     r.b0 = sorted_.cell_start(first);
                     r.b1 = sorted_.cell_end(last);
                     r.own = row.own;
-                    r.c0 = std::uint32_t(first);
-                    r.c1 = std::uint32_t(last);
+                    r.c0 = cluster_of(first);
+                    r.c1 = cluster_of(last + 1) - 1;
                     count += r.b0 != r.b1 ? 1 : 0;
                 }
                 scan.cell(begin1, end1, inner.data(), count);
@@ -144,15 +154,16 @@ class DenseBackend final : public Backend {
                     if (begin2 != end2) {
                         const bool own = own_row && sc == 0 && first <= c[2] && c[2] <= last;
                         const ImageShift s = scan.shift(sa, sb, sc);
-                        pieces.push_back(CandidateRange{begin2,
-                                                        end2,
-                                                        {s.s[0], s.s[1], s.s[2]},
-                                                        {s.v[0], s.v[1], s.v[2]},
-                                                        own,
-                                                        false,
-                                                        std::uint32_t(column + std::size_t(first)),
-                                                        std::uint32_t(column + std::size_t(last)),
-                                                        0});
+                        pieces.push_back(
+                            CandidateRange{begin2,
+                                           end2,
+                                           {s.s[0], s.s[1], s.s[2]},
+                                           {s.v[0], s.v[1], s.v[2]},
+                                           own,
+                                           false,
+                                           cluster_of(column + std::size_t(first)),
+                                           cluster_of(column + std::size_t(last) + 1) - 1,
+                                           0});
                     }
                 }
             }
@@ -177,21 +188,51 @@ class DenseBackend final : public Backend {
     }
 
   private:
-    // The bounding box of each cell's atoms, from the scanner's positions (the ones the kernel
-    // tests), and the cells' starts.
+    // Sorts the atoms of each cell along the rows' axis (fractional c, then the caller's index:
+    // the same order for any thread count), so that a row's atoms run along it and each cluster
+    // of cluster_atoms of them is a thin slab of its cell.
+    void sort_along_rows(const BinningInput& input, std::vector<std::uint32_t>& order) const {
+        const auto& f = input.fractional;
+        parallel_ranges(
+            unit_count(), input.plan.threads, [&](std::size_t begin, std::size_t end, std::size_t) {
+                for (std::size_t c = begin; c < end; ++c) {
+                    std::sort(order.begin() + sorted_.cell_start(c),
+                              order.begin() + sorted_.cell_end(c),
+                              [&](std::uint32_t a, std::uint32_t b) {
+                                  return f[a][2] < f[b][2] || (f[a][2] == f[b][2] && a < b);
+                              });
+                }
+            });
+    }
+
+    // The clusters of each cell (cluster_atoms or fewer consecutive atoms of the sorted order,
+    // the cell's atoms cut into equal parts), the bounding box of each cluster's atoms from the
+    // scanner's positions (the ones the kernel tests) and the clusters' starts.
     void build_boxes(const CandidateScanner& scan) const {
         const std::size_t cells = cells_.grid().cell_count();
         const double* x = scan.x();
         const double* y = scan.y();
         const double* z = scan.z();
         const double inf = std::numeric_limits<double>::infinity();
-        boxes_.resize(6 * cells);
-        starts_.resize(cells + 1);
-        double bound = 0;
+        first_cluster_.resize(cells + 1);
+        starts_.clear();
+        starts_.reserve(cells + sorted_.atom_count() / cluster_atoms + 1);
         for (std::size_t c = 0; c < cells; ++c) {
-            starts_[c] = sorted_.cell_start(c);
+            first_cluster_[c] = std::uint32_t(starts_.size());
+            const std::uint32_t begin = sorted_.cell_start(c), count = sorted_.cell_end(c) - begin;
+            const std::uint32_t parts = (count + cluster_atoms - 1) / cluster_atoms;
+            for (std::uint32_t k = 0; k < parts; ++k) {
+                starts_.push_back(begin + count * k / parts);
+            }
+        }
+        const std::size_t clusters = starts_.size();
+        first_cluster_[cells] = std::uint32_t(clusters);
+        starts_.push_back(cells > 0 ? sorted_.cell_end(cells - 1) : 0);
+        boxes_.resize(6 * clusters);
+        double bound = 0;
+        for (std::size_t c = 0; c < clusters; ++c) {
             double lo[3] = {inf, inf, inf}, hi[3] = {-inf, -inf, -inf};
-            for (std::uint32_t a = sorted_.cell_start(c); a < sorted_.cell_end(c); ++a) {
+            for (std::uint32_t a = starts_[c]; a < starts_[c + 1]; ++a) {
                 lo[0] = std::min(lo[0], x[a]), hi[0] = std::max(hi[0], x[a]);
                 lo[1] = std::min(lo[1], y[a]), hi[1] = std::max(hi[1], y[a]);
                 lo[2] = std::min(lo[2], z[a]), hi[2] = std::max(hi[2], z[a]);
@@ -199,13 +240,16 @@ class DenseBackend final : public Backend {
             for (int k = 0; k < 3; ++k) {
                 boxes_[6 * c + k] = lo[k];
                 boxes_[6 * c + 3 + k] = hi[k];
-                if (lo[k] <= hi[k]) {
-                    bound = std::max({bound, std::abs(lo[k]), std::abs(hi[k])});
-                }
+                bound = std::max({bound, std::abs(lo[k]), std::abs(hi[k])});
             }
         }
-        starts_[cells] = cells > 0 ? sorted_.cell_end(cells - 1) : 0;
         bound_ = bound;
+    }
+
+    // The first cluster of a cell (the cell itself without boxes): cells [first, last] hold
+    // clusters [cluster_of(first), cluster_of(last + 1) - 1].
+    std::uint32_t cluster_of(std::size_t cell) const {
+        return boxes_pay_ ? first_cluster_[cell] : std::uint32_t(cell);
     }
 
     // A stencil row as flat offsets from the home cell: cells [lo, hi] of the sorted order.
@@ -232,8 +276,9 @@ class DenseBackend final : public Backend {
     bool wraps_ = false; ///< the stencil reaches round a periodic axis onto its own cells
     bool boxes_pay_ = false;
     mutable std::unique_ptr<std::once_flag> boxes_once_;
-    mutable PairArray<double> boxes_; // 6 per cell, in huge pages (48 bytes a cell)
-    mutable std::vector<std::uint32_t> starts_;
+    mutable PairArray<double> boxes_;           // 6 per cluster, in huge pages (48 bytes a cluster)
+    mutable std::vector<std::uint32_t> starts_; ///< of each cluster, and the end
+    mutable std::vector<std::uint32_t> first_cluster_; ///< of each cell, and the count
     mutable double bound_ = 0;
 };
 

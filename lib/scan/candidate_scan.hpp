@@ -101,8 +101,9 @@ class CandidateScanner {
 
     /// Every atom of [a0, a1) against every range of list[0, count), the pieces of a home cell's
     /// stencil rows: through the range kernel (range_kernel.hpp), up to kernel_group atoms at a
-    /// time against as many ranges as one claim of the sink holds; a variable cutoff, a subset
-    /// search and a range too long for a claim go range by range through ranges().
+    /// time (fewer where a claim of the sink holds fewer against the longest range) against as
+    /// many ranges as one claim holds; a variable cutoff, a subset search and a range too long
+    /// for a claim go range by range through ranges().
     void cell(std::uint32_t a0, std::uint32_t a1, CandidateRange* list, std::uint32_t count) {
         if (query_ != nullptr || !rule_.uniform()) {
             for (std::uint32_t q = 0; q < count; ++q) {
@@ -117,8 +118,16 @@ class CandidateScanner {
                 r.reach_sq = cell_reach_sq(cutoff_, box_bound_, r.v);
             }
         }
-        for (std::uint32_t g0 = a0; g0 < a1; g0 += kernel_group) {
-            const std::uint32_t g1 = std::min(g0 + kernel_group, a1);
+        // As many atoms at a time as a claim holds against the longest range (block mode claims
+        // a few hundred pairs at most).
+        std::size_t longest = 1;
+        for (std::uint32_t q = 0; q < count; ++q) {
+            longest = std::max<std::size_t>(longest, list[q].b1 - list[q].b0);
+        }
+        const auto step = std::uint32_t(std::clamp<std::size_t>(
+            (sink_.claim_limit() - kernel_slack) / longest, 1, kernel_group));
+        for (std::uint32_t g0 = a0; g0 < a1; g0 += step) {
+            const std::uint32_t g1 = std::min(g0 + step, a1);
             const std::size_t most = (sink_.claim_limit() - kernel_slack) / (g1 - g0);
             std::uint32_t first = 0;
             std::size_t candidates = 0;
@@ -140,12 +149,13 @@ class CandidateScanner {
         }
     }
 
-    /// Prunes cell() by the bounding boxes of the cells' atoms: 6 per cell (lower x, y, z, upper
-    /// x, y, z of the atoms' positions here), cell c holding atoms [starts[c], starts[c + 1]),
-    /// `bound` the largest magnitude of a coordinate; each range of cell() then names its cells.
-    void prune_by_cells(const double* boxes, const std::uint32_t* starts, double bound) {
+    /// Prunes cell() by the bounding boxes of clusters of atoms: 6 per cluster (lower x, y, z,
+    /// upper x, y, z of the atoms' positions here), cluster c holding atoms [starts[c],
+    /// starts[c + 1]), `bound` the largest magnitude of a coordinate; each range of cell() then
+    /// names its clusters.
+    void prune_by_clusters(const double* boxes, const std::uint32_t* starts, double bound) {
         range_input_.boxes = boxes;
-        range_input_.cell_start = starts;
+        range_input_.cluster_start = starts;
         box_bound_ = bound;
     }
 

@@ -48,7 +48,7 @@ inline void store_hit(const RangeScanInput& in, std::uint32_t a, std::uint32_t b
     }
 }
 
-// The cell boxes prune the first pruned_ranges ranges of a call (a dense grid's stencil has a
+// The cluster boxes prune the first pruned_ranges ranges of a call (a dense grid's stencil has a
 // few dozen); any further ones are tested whole.
 constexpr std::uint32_t pruned_ranges = 64;
 
@@ -56,13 +56,13 @@ constexpr std::uint32_t pruned_ranges = 64;
 constexpr std::uint64_t prune_threshold = 8;
 
 // What each atom a0 + g of a call tests of range q < pruned_ranges: [b[q][g], e[q][g]), its
-// cells from the first to the last whose box comes within reach of the atom (b >= e: none).
+// clusters from the first to the last whose box comes within reach of the atom (b >= e: none).
 struct Spans {
     std::uint32_t b[pruned_ranges][kernel_group];
     std::uint32_t e[pruned_ranges][kernel_group];
 };
 
-// Whether the cell boxes pay for a call: a box test costs about what a block of candidates costs
+// Whether the cluster boxes pay for a call: a box test costs about what a block of candidates costs
 // one atom and leaves out only some candidates, so a call prunes only where its atoms meet at
 // least prune_threshold candidates per box (a few atoms of a sparse region against rows of an
 // atom or two would pay more than they save).
@@ -94,7 +94,7 @@ struct Candidates {
 };
 
 // The candidates of range q (ranges[q] = r) that atom a tests: a half list takes only b > a in
-// the own range, and where the boxes prune (Pruned, spans from a trim) the cells at either end
+// the own range, and where the boxes prune (Pruned, spans from a trim) the clusters at either end
 // of the range whose boxes lie beyond the cutoff's reach are left out (they hold no pair of a, so
 // the pairs and their order stay the same).
 template <bool Pruned>
@@ -110,19 +110,23 @@ inline Candidates candidates(const RangeScanInput& in, std::uint32_t a, std::uin
     return c;
 }
 
-// The candidates the spans leave out, summed over the atoms and the pruned ranges of a call.
+// The candidates the spans leave out, summed over the atoms and the pruned ranges of a call
+// (candidates() of each, without its branches).
 std::uint64_t spared(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
                      const CandidateRange* ranges, std::uint32_t count, const Spans& spans) {
-    std::uint64_t out = 0;
+    std::uint64_t whole = 0, kept = 0;
     for (std::uint32_t q = 0; q < std::min(count, pruned_ranges); ++q) {
+        const CandidateRange& r = ranges[q];
+        const bool later = r.own && in.half;
         for (std::uint32_t a = a0; a < a1; ++a) {
-            const Candidates whole = candidates<false>(in, a, a0, ranges[q], q, nullptr);
-            const Candidates kept = candidates<true>(in, a, a0, ranges[q], q, &spans);
-            out += (whole.b < whole.e ? whole.e - whole.b : 0) -
-                   (kept.b < kept.e ? kept.e - kept.b : 0);
+            const std::uint32_t from = later ? a + 1 : 0;
+            const std::uint32_t b = std::max(r.b0, from), kb = std::max(spans.b[q][a - a0], from);
+            const std::uint32_t ke = spans.e[q][a - a0];
+            whole += r.b1 > b ? r.b1 - b : 0;
+            kept += ke > kb ? ke - kb : 0;
         }
     }
-    return out;
+    return whole - kept;
 }
 
 // Fills spans for atoms [a0, a1) and ranges [0, min(count, pruned_ranges)), one at a time;
@@ -140,8 +144,8 @@ std::uint64_t spared(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a
             bool found = false;
             for (std::uint32_t c = r.c0; c <= r.c1; ++c) {
                 if (!beyond(in.boxes + 6 * std::size_t(c), tx, ty, tz, r.reach_sq)) {
-                    b = found ? b : in.cell_start[c];
-                    e = in.cell_start[c + 1];
+                    b = found ? b : in.cluster_start[c];
+                    e = in.cluster_start[c + 1];
                     found = true;
                 }
             }
@@ -233,9 +237,10 @@ __attribute__((target("avx2"))) std::uint64_t trim_avx2(const RangeScanInput& in
             // the lanes near the box, as 32-bit masks
             const __m256i near =
                 _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(bits), bit), bit);
-            b = _mm256_blendv_epi8(b, _mm256_set1_epi32(std::int32_t(in.cell_start[c])),
+            b = _mm256_blendv_epi8(b, _mm256_set1_epi32(std::int32_t(in.cluster_start[c])),
                                    _mm256_andnot_si256(found, near));
-            e = _mm256_blendv_epi8(e, _mm256_set1_epi32(std::int32_t(in.cell_start[c + 1])), near);
+            e = _mm256_blendv_epi8(e, _mm256_set1_epi32(std::int32_t(in.cluster_start[c + 1])),
+                                   near);
             found = _mm256_or_si256(found, near);
         }
         _mm256_storeu_si256(reinterpret_cast<__m256i*>(spans.b[q]), b);
@@ -349,9 +354,9 @@ trim_avx512(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
                 _mm512_add_pd(_mm512_mul_pd(gx, gx), _mm512_mul_pd(gy, gy)), _mm512_mul_pd(gz, gz));
             const __mmask8 near = _mm512_cmp_pd_mask(g_sq, reach, _CMP_LT_OQ);
             b = _mm256_mask_mov_epi32(b, __mmask8(near & ~found),
-                                      _mm256_set1_epi32(std::int32_t(in.cell_start[c])));
+                                      _mm256_set1_epi32(std::int32_t(in.cluster_start[c])));
             e = _mm256_mask_mov_epi32(e, near,
-                                      _mm256_set1_epi32(std::int32_t(in.cell_start[c + 1])));
+                                      _mm256_set1_epi32(std::int32_t(in.cluster_start[c + 1])));
             found = __mmask8(found | near);
         }
         _mm256_storeu_si256(reinterpret_cast<__m256i*>(spans.b[q]), b);

@@ -8,15 +8,19 @@
 // the cutoff pay, whose rows hold a few atoms each but leave fewer candidates
 // (grid_cells_per_cutoff in policy/cost_model.hpp).
 //
-// Bounding-box pruning, as in the cluster-pair search of Pall & Hess (2013) with the cells as
-// clusters: where the backend gives the bounding box of each cell's atoms, each atom of the home
-// cell is first tested against the boxes of the cells of every range (the atoms in the lanes,
-// one box at a time), and tests only the cells from the first to the last whose box, moved by
-// the range's shift, comes within the cutoff (plus a margin far wider than any rounding). The
-// cells left out hold no pair of that atom, so the exact test still decides every pair, the
-// pairs come in the same order and only the candidates change: on diamond Si (rc 5, cells of
-// one cutoff) 6.5 per pair become 3.4, whose lattice leaves the boxes well inside their cells;
-// on random atoms 7.3 become 6.5.
+// Cluster pruning, as in the cluster-pair search of Pall & Hess (2013): where the backend cuts
+// its atoms into clusters (contiguous runs of the sorted order, each with the bounding box of its
+// atoms; the dense grid sorts each cell's atoms along the stencil rows and cuts them into slabs
+// of at most 8), each atom of the home cell is first tested against the boxes of the clusters of
+// every range (the atoms in the lanes, one box at a time), and tests only the clusters from the
+// first to the last whose box, moved by the range's shift, comes within the cutoff (plus a margin
+// far wider than any rounding). The clusters left out hold no pair of that atom, so the exact
+// test still decides every pair, the pairs come in the same order and only the candidates
+// change: on diamond Si (rc 5, cells of one cutoff, about 7 atoms each: a cluster per cell) 6.5
+// per stored pair become 3.4, whose lattice leaves the boxes well inside their cells; on random
+// atoms (rc 6, about 24 atoms per cell) 7.3 become 3.1, where the boxes of whole cells left 6.5.
+// A span runs along a row, so the slabs cut it at both ends to about the chord of the cutoff
+// sphere.
 //
 // The arithmetic is distance_kernel.hpp's, term for term: D = (x_b - x_a) + T, d^2 = dx dx +
 // dy dy + dz dz without fused multiply-adds, d = sqrt(d^2), a zero component of D stored as +0,
@@ -44,10 +48,10 @@ struct CandidateRange {
     /// Half lists: whether the pair of an atom with its own image through s is turned around
     /// (its canonical orientation has -S; set by the scanner from the caller's frame).
     bool self_turn;
-    /// With cell boxes (RangeScanInput::boxes): the range is cells [c0, c1] of the sorted order.
+    /// With cluster boxes (RangeScanInput::boxes): the range is clusters [c0, c1].
     std::uint32_t c0 = 0, c1 = 0;
-    /// With cell boxes: a cell whose box, moved by v, lies at least this far (squared) from an
-    /// atom holds no pair of it (set by the scanner).
+    /// With cluster boxes: a cluster whose box, moved by v, lies at least this far (squared)
+    /// from an atom holds no pair of it (set by the scanner).
     double reach_sq = 0;
 };
 
@@ -61,10 +65,10 @@ struct RangeScanInput {
     bool zero_images;           ///< every image is 0
     double cutoff_sq;           ///< d^2 < cutoff_sq counts
     bool half;                  ///< canonical orientation
-    /// Bounding boxes of the atoms of each cell, 6 per cell (lower x, y, z, upper x, y, z), or
-    /// null (no pruning); cell c holds atoms [cell_start[c], cell_start[c + 1]).
+    /// Bounding boxes of the atoms of each cluster, 6 per cluster (lower x, y, z, upper x, y,
+    /// z), or null (no pruning); cluster c holds atoms [cluster_start[c], cluster_start[c + 1]).
     const double* boxes = nullptr;
-    const std::uint32_t* cell_start = nullptr;
+    const std::uint32_t* cluster_start = nullptr;
 };
 
 /// Where the pairs go: the next free place of each stored column (null: not stored), with room
@@ -83,7 +87,7 @@ struct PairSlots {
 /// atom, each atom's range by range in the ranges' order (so an atom's pairs of one call are one
 /// run, which grouping by i moves whole); returns how many. The slots have room for (a1 - a0)
 /// times the ranges' candidates, plus kernel_slack.
-/// `left_out` grows by the candidates that the cell boxes left untested.
+/// `left_out` grows by the candidates that the cluster boxes left untested.
 using RangeKernel = std::uint32_t (*)(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
                                       const CandidateRange* ranges, std::uint32_t count,
                                       const PairSlots& out, std::uint64_t& left_out);

@@ -281,7 +281,7 @@ TEST(RangeKernel, CellBoxesPruneNoPair) {
         ASSERT_EQ(none, 0u); // without boxes every candidate is tested
         whole += c.candidates;
         c.in.boxes = cc.boxes.data();
-        c.in.cell_start = cc.starts.data();
+        c.in.cluster_start = cc.starts.data();
         for (const auto& version : versions) {
             SCOPED_TRACE(version.name);
             std::uint64_t spared = 0;
