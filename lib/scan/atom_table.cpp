@@ -6,6 +6,22 @@
 
 namespace tricell::detail {
 
+namespace {
+
+// The table gathers each atom from the caller's order by the backend's (for a system much larger
+// than the caches, a miss on nearly every atom), so it asks for the atom this many ahead first.
+constexpr std::size_t gather_ahead = 16;
+
+inline void prefetch(const void* address) {
+#if defined(__GNUC__) || defined(__clang__)
+    __builtin_prefetch(address);
+#else
+    (void)address;
+#endif
+}
+
+} // namespace
+
 void fill_atom_table(const Eigen::Matrix3d& h, PointsView positions,
                      const WrappedPositions& wrapped, std::vector<std::uint32_t>& order,
                      const std::vector<std::uint8_t>& query, std::size_t threads,
@@ -19,6 +35,13 @@ void fill_atom_table(const Eigen::Matrix3d& h, PointsView positions,
     atoms.index.swap(order);
     parallel_ranges(n, threads, [&](std::size_t begin, std::size_t end, std::size_t) {
         for (std::size_t k = begin; k < end; ++k) {
+            if (k + gather_ahead < end) {
+                const std::size_t ahead = atoms.index[k + gather_ahead];
+                prefetch(positions.data + 3 * ahead); // an atom may span two cache lines
+                prefetch(positions.data + 3 * ahead + 2);
+                prefetch(image.data() + 3 * ahead);
+                prefetch(image.data() + 3 * ahead + 2);
+            }
             const std::size_t i = atoms.index[k];
             const Eigen::Vector3d img(image[3 * i], image[3 * i + 1], image[3 * i + 2]);
             const Eigen::Vector3d r = Eigen::Vector3d(positions[i]) - h * img;
