@@ -190,12 +190,16 @@ class DenseBackend final : public Backend {
   private:
     // Sorts the atoms of each cell along the rows' axis (fractional c, then the caller's index:
     // the same order for any thread count), so that a row's atoms run along it and each cluster
-    // of cluster_atoms of them is a thin slab of its cell.
+    // of cluster_atoms of them is a thin slab of its cell. A cell of at most cluster_atoms is one
+    // cluster whatever its order, and stays as binned.
     void sort_along_rows(const BinningInput& input, std::vector<std::uint32_t>& order) const {
         const auto& f = input.fractional;
         parallel_ranges(
             unit_count(), input.plan.threads, [&](std::size_t begin, std::size_t end, std::size_t) {
                 for (std::size_t c = begin; c < end; ++c) {
+                    if (sorted_.cell_end(c) - sorted_.cell_start(c) <= cluster_atoms) {
+                        continue; // one cluster: its box is the same in any order
+                    }
                     std::sort(order.begin() + sorted_.cell_start(c),
                               order.begin() + sorted_.cell_end(c),
                               [&](std::uint32_t a, std::uint32_t b) {
