@@ -139,6 +139,23 @@ class NeighborProperty : public ::testing::TestWithParam<Backend> {
     bool skip(const RandomSystem& sys) const {
         return backend() == SearchBackend::direct && sys.positions.size() > 40;
     }
+    // Calls check(sys, seed) on the random system of each seed first, first + step, ... below
+    // case_count that this backend takes, under a trace naming the seed and the kind; stops at
+    // the first failure.
+    template <class Check>
+    void for_each_case(std::uint64_t first, std::uint64_t step, const Check& check) const {
+        for (std::uint64_t seed = first; seed < case_count; seed += step) {
+            RandomSystem sys = tricell::testing::random_system(seed);
+            if (skip(sys)) {
+                continue;
+            }
+            SCOPED_TRACE(testing::Message() << "seed " << seed << " (" << sys.kind << ")");
+            check(sys, seed);
+            if (::testing::Test::HasFailure()) {
+                return;
+            }
+        }
+    }
 };
 
 INSTANTIATE_TEST_SUITE_P(EveryBackend, NeighborProperty, ::testing::ValuesIn(registry_backends()));
@@ -219,12 +236,7 @@ TEST_P(NeighborProperty, ZeroVectorsOfOpenAxesGiveTheBruteForcePairs_RandomCases
 }
 
 TEST_P(NeighborProperty, HalfListEqualsCanonicalFull_RandomCases) {
-    for (std::uint64_t seed = 0; seed < case_count; ++seed) {
-        const RandomSystem sys = tricell::testing::random_system(seed);
-        if (skip(sys)) {
-            continue;
-        }
-        SCOPED_TRACE(testing::Message() << "seed " << seed << " (" << sys.kind << ")");
+    for_each_case(0, 1, [&](const RandomSystem& sys, std::uint64_t seed) {
         const NeighborOptions o = options(seed, sys.cutoff);
         const NeighborList full_list = run(sys, o, false);
         const NeighborList half_list = run(sys, o, true);
@@ -240,19 +252,11 @@ TEST_P(NeighborProperty, HalfListEqualsCanonicalFull_RandomCases) {
             ASSERT_NE(reverse, full.end());
             EXPECT_LT((reverse->second.vector + value.vector).norm(), tolerance(sys));
         }
-        if (::testing::Test::HasFailure()) {
-            return;
-        }
-    }
+    });
 }
 
 TEST_P(NeighborProperty, SameListAsTheDenseBackend_RandomCases) {
-    for (std::uint64_t seed = 0; seed < case_count; seed += 2) {
-        const RandomSystem sys = tricell::testing::random_system(seed);
-        if (skip(sys)) {
-            continue;
-        }
-        SCOPED_TRACE(testing::Message() << "seed " << seed << " (" << sys.kind << ")");
+    for_each_case(0, 2, [&](const RandomSystem& sys, std::uint64_t seed) {
         NeighborOptions o = options(seed, sys.cutoff);
         o.sorted = true;
         NeighborOptions dense = o;
@@ -265,7 +269,7 @@ TEST_P(NeighborProperty, SameListAsTheDenseBackend_RandomCases) {
                 return;
             }
         }
-    }
+    });
 }
 
 // The bits of a double (+0 and -0 differ).
@@ -282,12 +286,7 @@ std::uint64_t bits(double v) {
 // (the variable-cutoff path orients pair by pair).
 TEST_P(NeighborProperty, HalfAndReversedPairsHaveExactlyNegatedVectors_RandomCases) {
     const auto negated = [](double v) { return v == 0.0 ? 0.0 : -v; };
-    for (std::uint64_t seed = 3; seed < case_count; seed += 4) {
-        const RandomSystem sys = tricell::testing::random_system(seed);
-        if (skip(sys)) {
-            continue;
-        }
-        SCOPED_TRACE(testing::Message() << "seed " << seed << " (" << sys.kind << ")");
+    for_each_case(3, 4, [&](const RandomSystem& sys, std::uint64_t seed) {
         NeighborOptions o = options(seed, sys.cutoff);
         if (seed % 8 == 7 && !sys.positions.empty()) {
             std::mt19937_64 rng(seed);
@@ -320,18 +319,13 @@ TEST_P(NeighborProperty, HalfAndReversedPairsHaveExactlyNegatedVectors_RandomCas
                 ASSERT_EQ(bits(same->second.vector[k]), bits(value.vector[k]));
             }
         }
-    }
+    });
 }
 
 // Per-atom radii and per-species tables: the oracle at the largest cutoff, filtered by each
 // pair's own cutoff; a pair may differ only within rounding of its own cutoff.
 TEST_P(NeighborProperty, VariableCutoffsEqualBruteForce_RandomCases) {
-    for (std::uint64_t seed = 7; seed < case_count; seed += 3) {
-        const RandomSystem sys = tricell::testing::random_system(seed);
-        if (skip(sys)) {
-            continue;
-        }
-        SCOPED_TRACE(testing::Message() << "seed " << seed << " (" << sys.kind << ")");
+    for_each_case(7, 3, [&](const RandomSystem& sys, std::uint64_t seed) {
         std::mt19937_64 rng(seed + 99);
         std::uniform_real_distribution<double> unit(0, 1);
         const std::size_t n = sys.positions.size();
@@ -389,19 +383,11 @@ TEST_P(NeighborProperty, VariableCutoffsEqualBruteForce_RandomCases) {
                 ADD_FAILURE() << "extra pair d=" << value.distance << " cutoff " << c;
             }
         }
-        if (::testing::Test::HasFailure()) {
-            return;
-        }
-    }
+    });
 }
 
 TEST_P(NeighborProperty, ResultDoesNotDependOnTheGrid_RandomCases) {
-    for (std::uint64_t seed = 1; seed < case_count; seed += 3) {
-        const RandomSystem sys = tricell::testing::random_system(seed);
-        if (skip(sys)) {
-            continue;
-        }
-        SCOPED_TRACE(testing::Message() << "seed " << seed << " (" << sys.kind << ")");
+    for_each_case(1, 3, [&](const RandomSystem& sys, std::uint64_t /*seed*/) {
         NeighborOptions coarse;
         coarse.backend = backend();
         coarse.cutoff = sys.cutoff;
@@ -416,10 +402,7 @@ TEST_P(NeighborProperty, ResultDoesNotDependOnTheGrid_RandomCases) {
             const PairMap b = tricell::testing::to_map(run(sys, fine, half));
             expect_same_pairs(a, b, sys.cutoff, tolerance(sys), "one cell vs fine grid");
         }
-        if (::testing::Test::HasFailure()) {
-            return;
-        }
-    }
+    });
 }
 
 TEST_P(NeighborProperty, InvariantUnderLatticeTranslationOfAnyAtom_RandomCases) {
@@ -462,12 +445,7 @@ TEST_P(NeighborProperty, InvariantUnderLatticeTranslationOfAnyAtom_RandomCases) 
 }
 
 TEST_P(NeighborProperty, InvariantUnderRotationOfTheWholeSystem_RandomCases) {
-    for (std::uint64_t seed = 3; seed < case_count; seed += 5) {
-        RandomSystem sys = tricell::testing::random_system(seed);
-        if (skip(sys)) {
-            continue;
-        }
-        SCOPED_TRACE(testing::Message() << "seed " << seed << " (" << sys.kind << ")");
+    for_each_case(3, 5, [&](RandomSystem& sys, std::uint64_t seed) {
         std::mt19937_64 rng(seed);
         std::normal_distribution<double> normal;
         const Eigen::Matrix3d rotation =
@@ -486,19 +464,11 @@ TEST_P(NeighborProperty, InvariantUnderRotationOfTheWholeSystem_RandomCases) {
         }
         const PairMap after = tricell::testing::to_map(run(sys, o, true));
         expect_same_pairs(expected, after, sys.cutoff, tolerance(sys) * 100, "rotated");
-        if (::testing::Test::HasFailure()) {
-            return;
-        }
-    }
+    });
 }
 
 TEST_P(NeighborProperty, VisitorSeesExactlyTheStoredPairs_RandomCases) {
-    for (std::uint64_t seed = 4; seed < case_count; seed += 7) {
-        const RandomSystem sys = tricell::testing::random_system(seed);
-        if (skip(sys)) {
-            continue;
-        }
-        SCOPED_TRACE(testing::Message() << "seed " << seed << " (" << sys.kind << ")");
+    for_each_case(4, 7, [&](const RandomSystem& sys, std::uint64_t seed) {
         NeighborOptions o = options(seed, sys.cutoff);
         o.half = seed % 2 == 0;
         const PairMap stored =
@@ -509,16 +479,11 @@ TEST_P(NeighborProperty, VisitorSeesExactlyTheStoredPairs_RandomCases) {
         });
         ASSERT_EQ(stored.size(), visited.size());
         expect_same_pairs(stored, visited, sys.cutoff, 0.0, "visitor vs stored");
-    }
+    });
 }
 
 TEST_P(NeighborProperty, OutputIdenticalForAnyThreadCount_RandomCases) {
-    for (std::uint64_t seed = 5; seed < case_count; seed += 11) {
-        const RandomSystem sys = tricell::testing::random_system(seed);
-        if (skip(sys)) {
-            continue;
-        }
-        SCOPED_TRACE(testing::Message() << "seed " << seed << " (" << sys.kind << ")");
+    for_each_case(5, 11, [&](const RandomSystem& sys, std::uint64_t seed) {
         NeighborOptions o = options(seed, sys.cutoff);
         o.half = seed % 2 == 1;
         o.threads = 1;
@@ -532,7 +497,7 @@ TEST_P(NeighborProperty, OutputIdenticalForAnyThreadCount_RandomCases) {
             ASSERT_EQ(one.distances(), many.distances());
             ASSERT_EQ(one.vectors(), many.vectors());
         }
-    }
+    });
 }
 
 // grouped: the unordered list stably grouped by i (checked against a stable sort of it by i),
@@ -542,12 +507,7 @@ TEST_P(NeighborProperty, OutputIdenticalForAnyThreadCount_RandomCases) {
 // it), and must equal a fresh list each time.
 TEST_P(NeighborProperty, GroupedListIsTheUnorderedListStablyGroupedByI_RandomCases) {
     NeighborList reused;
-    for (std::uint64_t seed = 2; seed < case_count; seed += 3) {
-        const RandomSystem sys = tricell::testing::random_system(seed);
-        if (skip(sys)) {
-            continue;
-        }
-        SCOPED_TRACE(testing::Message() << "seed " << seed << " (" << sys.kind << ")");
+    for_each_case(2, 3, [&](const RandomSystem& sys, std::uint64_t seed) {
         NeighborOptions o = options(seed, sys.cutoff);
         o.half = seed % 2 == 1;
         o.quantities.shifts = seed % 5 != 0;
@@ -601,28 +561,21 @@ TEST_P(NeighborProperty, GroupedListIsTheUnorderedListStablyGroupedByI_RandomCas
             }
         }
         EXPECT_TRUE(plain.offsets().empty());
-    }
+    });
 }
 
 TEST_P(NeighborProperty, CellReductionDoesNotChangeTheList_RandomCases) {
-    for (std::uint64_t seed = 1; seed < case_count; seed += 6) { // the strongly skewed kind
-        const RandomSystem sys = tricell::testing::random_system(seed);
-        if (skip(sys)) {
-            continue;
-        }
-        SCOPED_TRACE(testing::Message() << "seed " << seed << " (" << sys.kind << ")");
-        NeighborOptions o = options(seed, sys.cutoff);
-        o.half = seed % 4 == 1;
-        o.reduce_cell = false;
-        const PairMap plain = tricell::testing::to_map(run(sys, o, o.half));
-        o.reduce_cell = true;
-        const PairMap with_reduction = tricell::testing::to_map(run(sys, o, o.half));
-        expect_same_pairs(plain, with_reduction, sys.cutoff, tolerance(sys) * 100,
-                          "reduced vs plain frame");
-        if (::testing::Test::HasFailure()) {
-            return;
-        }
-    }
+    for_each_case(1, 6,
+                  [&](const RandomSystem& sys, std::uint64_t seed) { // the strongly skewed kind
+                      NeighborOptions o = options(seed, sys.cutoff);
+                      o.half = seed % 4 == 1;
+                      o.reduce_cell = false;
+                      const PairMap plain = tricell::testing::to_map(run(sys, o, o.half));
+                      o.reduce_cell = true;
+                      const PairMap with_reduction = tricell::testing::to_map(run(sys, o, o.half));
+                      expect_same_pairs(plain, with_reduction, sys.cutoff, tolerance(sys) * 100,
+                                        "reduced vs plain frame");
+                  });
 }
 
 TEST(NeighborSearch, ShearedBoxUsesItsReducedTwin) {
