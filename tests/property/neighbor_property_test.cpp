@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 
 #include "support/brute_force.hpp"
+#include "support/identical_lists.hpp"
 #include "support/random_systems.hpp"
 #include "tricell/neighbor_list.hpp"
 
@@ -73,15 +74,6 @@ void expect_same_pairs(const PairMap& expected, const PairMap& actual, double cu
                           << c << ") d=" << value.distance;
         }
     }
-}
-
-// Two stored lists equal column by column, d and D bit for bit.
-void expect_identical(const NeighborList& expected, const NeighborList& actual) {
-    ASSERT_EQ(expected.i(), actual.i());
-    ASSERT_EQ(expected.j(), actual.j());
-    ASSERT_EQ(expected.shifts(), actual.shifts());
-    ASSERT_EQ(expected.distances(), actual.distances());
-    ASSERT_EQ(expected.vectors(), actual.vectors());
 }
 
 // Random tuning knobs: none of them may change the result.
@@ -264,7 +256,7 @@ TEST_P(NeighborProperty, SameListAsTheDenseBackend_RandomCases) {
         for (const bool half : {false, true}) {
             const NeighborList expected = run(sys, dense, half);
             const NeighborList actual = run(sys, o, half);
-            expect_identical(expected, actual);
+            tricell::testing::expect_identical(expected, actual);
             if (::testing::Test::HasFatalFailure()) {
                 return;
             }
@@ -655,7 +647,7 @@ check_cluster_boxes(std::size_t per_cell, std::uint64_t cases, std::uint64_t fir
         for (const bool half : {false, true}) {
             const NeighborList expected = run(sys, linked, half);
             const NeighborList actual = run(sys, o, half);
-            expect_identical(expected, actual);
+            tricell::testing::expect_identical(expected, actual);
             if (::testing::Test::HasFatalFailure()) {
                 return {pruned, whole};
             }

@@ -9,6 +9,7 @@
 #include "scan/distance_kernel.hpp"
 #include "support/brute_force.hpp"
 #include "support/expect_throw_msg.hpp"
+#include "support/identical_lists.hpp"
 #include "support/random_boxes.hpp"
 #include "tricell/error.hpp"
 #include "tricell/neighbor_list.hpp"
@@ -27,16 +28,6 @@ NeighborOptions with_cutoff(double cutoff) {
     return o;
 }
 const Box cube10 = Box::from_parameters(10, 10, 10, 90, 90, 90);
-
-// Two stored lists equal column by column, d and D bit for bit.
-void expect_identical(const NeighborList& expected, const NeighborList& actual) {
-    ASSERT_EQ(expected.size(), actual.size());
-    EXPECT_EQ(expected.i(), actual.i());
-    EXPECT_EQ(expected.j(), actual.j());
-    EXPECT_EQ(expected.shifts(), actual.shifts());
-    EXPECT_EQ(expected.distances(), actual.distances());
-    EXPECT_EQ(expected.vectors(), actual.vectors());
-}
 } // namespace
 
 TEST(NeighborList, TwoAtomsAcrossTheBoundary) {
@@ -598,7 +589,7 @@ TEST(DirectBackend, ReusedSearchFollowsEveryChangeOfBoxRadiusAndAtoms) {
         search.build(box, x, direct);
         search.compute(list);
         tricell::compute_neighbors(box, x, dense, reference);
-        expect_identical(reference, list);
+        tricell::testing::expect_identical(reference, list);
         const auto expected = tricell::testing::brute_force_pairs(box, x, cutoff);
         const auto found = tricell::testing::to_map(list);
         for (const auto& [key, value] : expected) {
@@ -647,7 +638,7 @@ TEST(NeighborSearch, ReusedDenseSearchEqualsAFreshOneAsSizesAndThreadsChange) {
         tricell::NeighborSearch fresh;
         fresh.build(box, x, o);
         fresh.compute(reference);
-        expect_identical(reference, list);
+        tricell::testing::expect_identical(reference, list);
         if (n <= 800) {
             const auto all = tricell::testing::brute_force_pairs(box, x, cutoff);
             const auto expected = o.half ? tricell::testing::canonical_half(all) : all;
