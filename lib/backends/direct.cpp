@@ -36,7 +36,8 @@ class DirectBackend final : public Backend {
   public:
     void bin(const BinningInput& input, std::vector<std::uint32_t>& order) override {
         const std::size_t n = input.fractional.size();
-        half_ = input.options.half;
+        half_ = input.plan.half_stencil(input.options);
+        mirrored_ = input.plan.mirrored;
         atoms_ = n;
         search_radius_ = input.search_radius;
         order.resize(n);
@@ -160,14 +161,18 @@ class DirectBackend final : public Backend {
             // Only S = 0 can hold a pair (a molecule, or a cutoff short of every image), and the
             // atoms are few: they are one range, tested in vector blocks. Any group of atoms
             // against it fits one claim, so the pairs come atom by atom whatever the split
-            // between threads.
-            CandidateRange range{half_ ? std::uint32_t(begin) : 0u,
-                                 std::uint32_t(atoms_),
-                                 {0, 0, 0},
-                                 {0, 0, 0},
-                                 true,
-                                 false};
-            scan.cell(std::uint32_t(begin), std::uint32_t(end), &range, 1);
+            // between threads; a mirrored list, which turns a call's pairs around after them,
+            // makes one call per atom for the same reason.
+            const std::size_t step = mirrored_ ? 1 : end - begin;
+            for (std::size_t a = begin; a < end; a += step) {
+                CandidateRange range{half_ ? std::uint32_t(a) : 0u,
+                                     std::uint32_t(atoms_),
+                                     {0, 0, 0},
+                                     {0, 0, 0},
+                                     true,
+                                     false};
+                scan.cell(std::uint32_t(a), std::uint32_t(std::min(a + step, end)), &range, 1);
+            }
             return;
         }
         for (std::size_t a = begin; a < end; ++a) {
@@ -258,6 +263,7 @@ class DirectBackend final : public Backend {
     }
 
     bool half_ = false;
+    bool mirrored_ = false;
     std::size_t atoms_ = 0;
     double search_radius_ = 0;
     double reach_ = 1, reach_sq_ = 1;

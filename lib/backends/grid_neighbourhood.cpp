@@ -11,7 +11,7 @@ void GridNeighbourhood::build(const BinningInput& input, std::size_t max_cells, 
 
     const bool exact_pruning =
         input.plan.exact_pruning(double(grid_.dims()[0]) * grid_.dims()[1] * grid_.dims()[2]);
-    stencil_ = input.options.half
+    stencil_ = input.plan.half_stencil(input.options)
                    ? Stencil::half(grid_, input.frame, input.search_radius, exact_pruning, tables)
                    : Stencil::full(grid_, input.frame, input.search_radius, exact_pruning, tables);
 }

@@ -23,7 +23,7 @@ class LinkedBackend final : public Backend {
             order[i] = std::uint32_t(i);
         }
         linked_.build(cell_of, cells_.grid().cell_count());
-        half_ = input.options.half;
+        half_ = input.plan.half_stencil(input.options);
     }
 
     std::size_t unit_count() const override { return cells_.grid().cell_count(); }

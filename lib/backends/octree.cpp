@@ -77,7 +77,7 @@ class OctreeBackend final : public Backend {
         orthogonal_ = square(0, 1) && square(0, 2) && square(1, 2);
         radius_ = input.search_radius;
         radius_sq_ = radius_ * radius_;
-        half_ = input.options.half;
+        half_ = input.plan.half_stencil(input.options);
         leaf_size_ = input.options.leaf_size != 0 ? input.options.leaf_size : octree_leaf_size();
         nodes_.clear();
         leaves_.clear();

@@ -58,6 +58,13 @@ struct BuildPlan {
     std::size_t cell_cap = 0;                     ///< most cells of the dense and linked grids
     double cells_per_cutoff = 1;                  ///< of the grids (the option, or chosen)
     std::size_t atoms = 0;
+    /// A full list found through the half stencil: each pair the search finds is stored as
+    /// found and turned around (the scanner's mirrored mode), so a full list costs a half
+    /// search plus its stores.
+    bool mirrored = false;
+
+    /// Whether the backends name each unordered pair once: a half list, or a mirrored full one.
+    bool half_stencil(const NeighborOptions& options) const { return options.half || mirrored; }
 
     /// Whether the stencil prunes offsets by the exact closest approach of their cells (a small
     /// quadratic problem per boundary offset) in a grid of `cells` cells: worth it only when an

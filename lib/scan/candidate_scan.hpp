@@ -45,16 +45,19 @@ struct ImageShift {
 class CandidateScanner {
   public:
     /// Scans `atoms` (in `frame`'s box) for the pairs `rule` takes, of a full or a `half` list
-    /// (a subset one when the table has query flags), into `sink`.
+    /// (a subset one when the table has query flags), into `sink`. `mirrored` (a full list with
+    /// a uniform cutoff and no query): the backend names each unordered pair once, as for a half
+    /// list, and each hit is stored as found and then turned around (-S, -D, the same d), so
+    /// the full list costs a half search plus its stores.
     CandidateScanner(const AtomTable& atoms, const SearchFrame& frame, const CutoffRule& rule,
-                     bool half, PairSink& sink)
+                     bool half, bool mirrored, PairSink& sink)
         : x_(atoms.x.data()), y_(atoms.y.data()), z_(atoms.z.data()), image_(atoms.image.data()),
           zero_images_(atoms.zero_images), index_(atoms.index.data()), h_(frame.box().matrix()),
-          cutoff_sq_(rule.threshold_sq()), rule_(rule), half_(half), frame_(frame), sink_(sink),
+          cutoff_sq_(rule.threshold_sq()), rule_(rule), half_(half || mirrored),
+          orient_(half && !mirrored), mirrored_(mirrored && !half), frame_(frame), sink_(sink),
           query_(atoms.subset() ? atoms.query.data() : nullptr),
-          subset_half_(atoms.subset() && half), range_input_{x_,         y_,     z_,
-                                                             index_,     image_, zero_images_,
-                                                             cutoff_sq_, half},
+          subset_half_(atoms.subset() && half),
+          range_input_{x_, y_, z_, index_, image_, zero_images_, cutoff_sq_, half_, orient_},
           range_kernel_(range_kernel()) {}
 
     /// Whether atom a can be the first atom of a pair (false only outside the query of a full
@@ -113,22 +116,23 @@ class CandidateScanner {
         }
         for (std::uint32_t q = 0; q < count; ++q) {
             CandidateRange& r = list[q];
-            r.self_turn = half_ && flip(0, 0, r.s[0], r.s[1], r.s[2]);
+            r.self_turn = orient_ && flip(0, 0, r.s[0], r.s[1], r.s[2]);
             if (range_input_.boxes != nullptr) {
                 r.reach_sq = cell_reach_sq(cutoff_, box_bound_, r.v);
             }
         }
         // As many atoms at a time as a claim holds against the longest range (block mode claims
-        // a few hundred pairs at most).
+        // a few hundred pairs at most; a mirrored list stores each hit twice).
         std::size_t longest = 1;
         for (std::uint32_t q = 0; q < count; ++q) {
             longest = std::max<std::size_t>(longest, list[q].b1 - list[q].b0);
         }
-        const auto step = std::uint32_t(std::clamp<std::size_t>(
-            (sink_.claim_limit() - kernel_slack) / longest, 1, kernel_group));
+        const std::size_t room = (sink_.claim_limit() - kernel_slack) / stores_per_hit();
+        const auto step =
+            std::uint32_t(std::clamp<std::size_t>(room / longest, 1, kernel_group));
         for (std::uint32_t g0 = a0; g0 < a1; g0 += step) {
             const std::uint32_t g1 = std::min(g0 + step, a1);
-            const std::size_t most = (sink_.claim_limit() - kernel_slack) / (g1 - g0);
+            const std::size_t most = room / (g1 - g0);
             std::uint32_t first = 0;
             std::size_t candidates = 0;
             for (std::uint32_t q = 0; q < count; ++q) {
@@ -265,8 +269,10 @@ class CandidateScanner {
             }
         }
         std::uint64_t left_out = 0;
-        const PairSink::Slots out = sink_.claim((a1 - a0) * candidates + kernel_slack);
-        sink_.commit(range_kernel_(range_input_, a0, a1, list, count, out, left_out));
+        const PairSink::Slots out =
+            sink_.claim(stores_per_hit() * (a1 - a0) * candidates + kernel_slack);
+        const std::uint32_t found = range_kernel_(range_input_, a0, a1, list, count, out, left_out);
+        store(out, found);
         tests_ -= left_out;
     }
 
@@ -318,7 +324,7 @@ class CandidateScanner {
             }
             if (!rule_.uniform()) {
                 keep_some(side, start, hits, hit_d_sq, found, s);
-            } else if (!half_ || !may_turn(how, start, hits, found)) {
+            } else if (!orient_ || !may_turn(how, start, hits, found)) {
                 keep_all(side, start, hits, hit_d_sq, found, s);
             } else if (query_ == nullptr) {
                 keep_oriented<false>(side, start, hits, hit_d_sq, found, s);
@@ -434,7 +440,7 @@ class CandidateScanner {
     // stored column and the scalar square root cost more than the stores themselves).
     void keep_all(const Side& side, std::uint32_t start, const std::uint32_t* hits,
                   const double* d_sq, std::uint32_t found, const ImageShift& s) {
-        const PairSink::Slots out = sink_.claim(found);
+        const PairSink::Slots out = sink_.claim(stores_per_hit() * found);
         for (std::uint32_t h = 0; h < found; ++h) {
             out.i[h] = side.i[hits[h] / kernel_block];
             out.j[h] = index_[start + hits[h] % kernel_block];
@@ -465,7 +471,7 @@ class CandidateScanner {
                 out.vectors[3 * h + 2] = ((z_[b] - side.z[g]) + s.v[2]) + 0.0;
             }
         }
-        sink_.commit(found);
+        store(out, found);
     }
 
     // A candidate within the cutoff, as it would be stored: i, j, S (s plus the images), D, d^2.
@@ -493,7 +499,7 @@ class CandidateScanner {
     // when that is the canonical orientation (exactly what the other orientation's scan
     // computes, see above). Then a variable cutoff decides. (b: the second atom, see orients().)
     bool counts(Hit& p, std::uint32_t b) const {
-        if (half_ && orients(b) && flip(p.i, p.j, p.sa, p.sb, p.sc)) {
+        if (orient_ && orients(b) && flip(p.i, p.j, p.sa, p.sb, p.sc)) {
             std::swap(p.i, p.j);
             p.sa = -p.sa;
             p.sb = -p.sb;
@@ -511,7 +517,22 @@ class CandidateScanner {
         Hit p = make_hit(b, i, sa_a, sb_a, sc_a, dx, dy, dz, d_sq);
         if (counts(p, b)) {
             sink_.add(p.i, p.j, p.sa, p.sb, p.sc, p.dx + 0.0, p.dy + 0.0, p.dz + 0.0, p.d_sq);
+            if (mirrored_) {
+                sink_.add(p.j, p.i, -p.sa, -p.sb, -p.sc, -p.dx + 0.0, -p.dy + 0.0, -p.dz + 0.0,
+                          p.d_sq);
+            }
         }
+    }
+
+    // Pairs a hit takes in the sink: two in a mirrored list.
+    std::size_t stores_per_hit() const { return mirrored_ ? 2 : 1; }
+
+    // Keeps the `found` pairs written to `out`, followed in a mirrored list by each turned around.
+    void store(const PairSink::Slots& out, std::uint32_t found) {
+        if (mirrored_) {
+            PairSink::put_turned(out, found);
+        }
+        sink_.commit(stores_per_hit() * found);
     }
 
     // Whether a half list turns a hit (a, b) into its canonical orientation: always, but in a
@@ -539,7 +560,9 @@ class CandidateScanner {
     double cutoff_ = std::sqrt(cutoff_sq_);
     double box_bound_ = 0;
     const CutoffRule& rule_;
-    bool half_;
+    bool half_;     // the backend names each unordered pair once (a half or mirrored list)
+    bool orient_;   // each pair is turned into its canonical orientation (a half list)
+    bool mirrored_; // each pair is stored twice, as found and turned around
     const SearchFrame& frame_;
     PairSink& sink_;
     const std::uint8_t* query_; // null unless a subset search (see above)

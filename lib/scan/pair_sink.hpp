@@ -38,9 +38,9 @@ inline SinkColumns stored_columns(PairColumns& c, bool shifts, bool distances, b
 
 class PairSink {
   public:
-    /// Pairs per block in block mode: at least one kernel call's hits (CandidateScanner claims
-    /// them at once).
-    static constexpr std::size_t block_size = kernel_group * kernel_block;
+    /// Pairs per block in block mode: at least one kernel call's hits, each stored twice in a
+    /// mirrored list (CandidateScanner claims them at once).
+    static constexpr std::size_t block_size = 2 * kernel_group * kernel_block;
 
     /// Storing mode: appends to `columns` after their first `start` pairs (kept), starting with
     /// room for `initial` more, never more than `limits` allow (they must outlive the sink).
@@ -115,6 +115,27 @@ class PairSink {
             std::copy(d_sq, d_sq + count, out.distances);
         } else {
             square_roots(d_sq, static_cast<std::uint32_t>(count), out.distances);
+        }
+    }
+
+    /// Writes pairs [count, 2 count) of claimed slots as pairs [0, count) turned around: (j, i),
+    /// -S, -D (a zero component as +0) and the same distance (IEEE negation is exact, so these
+    /// are the bits a search from the other atom computes, see candidate_scan.hpp).
+    static void put_turned(const Slots& out, std::size_t count) {
+        std::copy(out.j, out.j + count, out.i + count);
+        std::copy(out.i, out.i + count, out.j + count);
+        if (out.shifts != nullptr) {
+            for (std::size_t k = 0; k < 3 * count; ++k) {
+                out.shifts[3 * count + k] = -out.shifts[k];
+            }
+        }
+        if (out.distances != nullptr) {
+            std::copy(out.distances, out.distances + count, out.distances + count);
+        }
+        if (out.vectors != nullptr) {
+            for (std::size_t k = 0; k < 3 * count; ++k) {
+                out.vectors[3 * count + k] = -out.vectors[k] + 0.0;
+            }
         }
     }
 

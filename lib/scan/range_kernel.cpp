@@ -21,7 +21,7 @@ inline void store_hit(const RangeScanInput& in, std::uint32_t a, std::uint32_t b
                       const CandidateRange& r, double dx, double dy, double dz, double d_sq,
                       const PairSlots& out, std::uint32_t n) {
     const std::uint32_t i = in.index[a], j = in.index[b];
-    const bool turn = in.half && (i != j ? i > j : r.self_turn);
+    const bool turn = in.orient && (i != j ? i > j : r.self_turn);
     out.i[n] = turn ? j : i;
     out.j[n] = turn ? i : j;
     if (out.shifts != nullptr) {
@@ -93,7 +93,7 @@ struct Candidates {
     std::uint32_t b, e;
 };
 
-// The candidates of range q (ranges[q] = r) that atom a tests: a half list takes only b > a in
+// The candidates of range q (ranges[q] = r) that atom a tests: the half stencil takes only b > a in
 // the own range, and where the boxes prune (Pruned, spans from a trim) the clusters at either end
 // of the range whose boxes lie beyond the cutoff's reach are left out (they hold no pair of a, so
 // the pairs and their order stay the same).
@@ -381,7 +381,7 @@ scan_avx512(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
     const double* const z = in.z;
     const std::uint32_t* const index = in.index;
     const std::int32_t* const image = in.image;
-    const bool half = in.half, zero_images = in.zero_images;
+    const bool orient = in.orient, zero_images = in.zero_images;
     const double cutoff_sq = in.cutoff_sq;
     std::uint32_t* const oi = out.i;
     std::uint32_t* const oj = out.j;
@@ -436,7 +436,7 @@ scan_avx512(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
                 const __m256i vj = _mm256_maskz_loadu_epi32(__mmask8(hit), index + b);
                 // Lanes turned around (a half list): i > j, or an atom's own image the range turns.
                 unsigned turn = 0;
-                if (half) {
+                if (orient) {
                     turn = _mm256_mask_cmpgt_epu32_mask(__mmask8(hit), vi, vj);
                     if (self_lane && self_turn) {
                         turn |= hit & (1u << (a - b));

@@ -64,7 +64,8 @@ struct RangeScanInput {
     const std::int32_t* image;  ///< 3 per atom
     bool zero_images;           ///< every image is 0
     double cutoff_sq;           ///< d^2 < cutoff_sq counts
-    bool half;                  ///< canonical orientation
+    bool half;                  ///< the half stencil: the own range takes b > a only
+    bool orient;                ///< each pair in its canonical orientation (a half list)
     /// Bounding boxes of the atoms of each cluster, 6 per cluster (lower x, y, z, upper x, y,
     /// z), or null (no pruning); cluster c holds atoms [cluster_start[c], cluster_start[c + 1]).
     const double* boxes = nullptr;

@@ -86,6 +86,7 @@ void build_search(SearchState& s, const Box& caller_box, PointsView positions, s
     s.atom_count = n;
     s.estimated_pairs = 0;
     s.most_pairs = 0;
+    s.mirrored = false;
     const double cutoff = s.rule.max_cutoff();
     // At most the largest double: the margin overflows a finite cutoff near it to inf, which the
     // grid refuses and the other backends accept.
@@ -105,6 +106,7 @@ void build_search(SearchState& s, const Box& caller_box, PointsView positions, s
                                       query.empty() ? n : s.query_atoms);
     s.estimated_pairs = plan.estimated_pairs;
     s.most_pairs = plan.most_pairs;
+    s.mirrored = plan.mirrored;
     ListLimits(options, n).check_estimate(s.estimated_pairs, cutoff);
 
     Backend* backend = &s.pool.get(plan.backend);

@@ -24,6 +24,7 @@ struct SearchState {
     double most_pairs = 0; ///< BuildPlan::most_pairs
     std::size_t atom_count = 0;
     std::size_t query_atoms = 0; ///< a subset search's query atoms (0: the ordinary search)
+    bool mirrored = false;       ///< BuildPlan::mirrored
     CutoffRule rule;
     AtomTable atoms; ///< in the backend's order
     // The backend of the last build, null when no pair can count (all radii zero, ...).
@@ -36,7 +37,7 @@ struct SearchState {
 
     /// A scanner of this search's atoms that hands its pairs to `sink`.
     CandidateScanner scanner(PairSink& sink) const {
-        return CandidateScanner(atoms, frame, rule, options.half, sink);
+        return CandidateScanner(atoms, frame, rule, options.half, mirrored, sink);
     }
 };
 

@@ -75,6 +75,7 @@ Case random_case(std::mt19937_64& rng, int trial) {
     c.in.zero_images = trial % 3 == 0;
     c.in.cutoff_sq = 2.25;
     c.in.half = trial % 4 >= 2;
+    c.in.orient = c.in.half && trial % 8 != 2; // a mirrored full list's half stencil otherwise
     c.shifts = trial % 5 != 1, c.distances = trial % 7 != 2, c.vectors = trial % 3 != 2;
     c.squares = trial % 11 == 3;
     return c;
@@ -188,6 +189,7 @@ CellCase random_cell_case(std::mt19937_64& rng, int trial) {
     c.in.cutoff_sq = 2.25;
     c.in.zero_images = trial % 5 == 0;
     c.in.half = trial % 4 >= 2;
+    c.in.orient = c.in.half && trial % 8 != 2; // a mirrored full list's half stencil otherwise
     c.shifts = trial % 5 != 1, c.distances = trial % 7 != 2, c.vectors = trial % 3 != 2;
     c.squares = trial % 11 == 3;
     if (atoms == 0) {
@@ -230,8 +232,9 @@ CellCase random_cell_case(std::mt19937_64& rng, int trial) {
 
 // Every range kernel this processor can run (AVX-512, AVX2, the portable one) writes the same
 // pairs in the same order with the same bits as the portable one, for any mix of ranges, own
-// ranges, images, half lists and stored columns; and the portable one finds exactly the
-// candidates with d^2 < cutoff^2, one pair each, in the canonical orientation of a half list.
+// ranges, images, half lists (oriented, or the unoriented half stencil of a mirrored full list)
+// and stored columns; and the portable one finds exactly the candidates with d^2 < cutoff^2, one
+// pair each, in the canonical orientation of a half list and as found otherwise.
 TEST(RangeKernel, EveryVersionMatchesThePortableOneBitForBit) {
     const auto versions = range_kernels();
     ASSERT_EQ(std::string(versions.back().name), "generic");
@@ -252,9 +255,17 @@ TEST(RangeKernel, EveryVersionMatchesThePortableOneBitForBit) {
             }
         }
         ASSERT_EQ(expected.n, hits);
-        for (std::uint32_t p = 0; p < expected.n && c.in.half; ++p) {
+        // Oriented: i <= j. Not oriented: as found, i the home atom's index.
+        for (std::uint32_t p = 0; p < expected.n && c.in.orient; ++p) {
             ASSERT_LE(expected.i[p], expected.j[p]);
         }
+        std::uint32_t unturned = 0;
+        for (std::uint32_t p = 0; p < expected.n && !c.in.orient; ++p) {
+            for (std::uint32_t a = c.a0; a < c.a1; ++a) {
+                unturned += c.index[a] == expected.i[p];
+            }
+        }
+        ASSERT_EQ(unturned, c.in.orient ? 0 : expected.n);
         for (const auto& version : versions) {
             SCOPED_TRACE(version.name);
             expect_same(c, run(version.scan, c), expected);
