@@ -365,10 +365,37 @@ trim_avx512(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
     return spared(in, a0, a1, ranges, count, spans);
 }
 
+// D of the `hit` lanes of (dx, dy, dz), compressed and interleaved into 24 doubles at `to` (x, y, z
+// of each pair, whole registers: the slots' slack takes the lanes past the hits), negated where
+// `turned` (of the compressed lanes) and a zero stored as +0: store_hit()'s t * dx + 0.0 as
+// (0 - dx) or (dx + 0).
+__attribute__((target("avx512f"))) inline __m512d signed_lanes(__m512d v, __mmask8 hit,
+                                                               __mmask8 turned) {
+    const __m512d zero = _mm512_setzero_pd();
+    const __m512d c = _mm512_maskz_compress_pd(hit, v);
+    return _mm512_mask_sub_pd(_mm512_add_pd(c, zero), turned, zero, c);
+}
+
+__attribute__((target("avx512f"))) inline void store_vectors(double* to, __mmask8 hit,
+                                                             __mmask8 turned, __m512d dx,
+                                                             __m512d dy, __m512d dz) {
+    const __m512d x = signed_lanes(dx, hit, turned), y = signed_lanes(dy, hit, turned),
+                  z = signed_lanes(dz, hit, turned);
+    // x and y into their places of each register (index 8 + k: y's lane k), then z over the gaps.
+    const __m512d xy0 = _mm512_permutex2var_pd(x, _mm512_setr_epi64(0, 8, 0, 1, 9, 0, 2, 10), y);
+    const __m512d xy1 = _mm512_permutex2var_pd(x, _mm512_setr_epi64(0, 3, 11, 0, 4, 12, 0, 5), y);
+    const __m512d xy2 = _mm512_permutex2var_pd(x, _mm512_setr_epi64(13, 0, 6, 14, 0, 7, 15, 0), y);
+    _mm512_storeu_pd(to, _mm512_permutex2var_pd(xy0, _mm512_setr_epi64(0, 1, 8, 3, 4, 9, 6, 7), z));
+    _mm512_storeu_pd(to + 8,
+                     _mm512_permutex2var_pd(xy1, _mm512_setr_epi64(10, 1, 2, 11, 4, 5, 12, 7), z));
+    _mm512_storeu_pd(to + 16,
+                     _mm512_permutex2var_pd(xy2, _mm512_setr_epi64(0, 13, 2, 3, 14, 5, 6, 15), z));
+}
+
 // AVX-512: eight candidates at a time through masked loads; a block's hits are compressed in
 // registers and stored whole (the slots have kernel_slack room): i, j (turned with min/max in a
-// half list), d and, with every image 0, S as the range's shift or its negative per lane. D, and
-// S with images, are written per hit from the compressed lanes.
+// half list), d, D (store_vectors()) and, with every image 0, S as the range's shift or its
+// negative per lane. S with images is written per hit from the compressed lanes.
 template <bool Pruned>
 __attribute__((target("avx512f,avx512vl,avx512dq,bmi2"))) std::uint32_t
 scan_avx512(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
@@ -468,31 +495,20 @@ scan_avx512(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
                                         _mm256_mask_sub_epi32(s_hi, __mmask8(negative >> 16),
                                                               _mm256_setzero_si256(), s_hi));
                 }
-                const bool shifts_per_hit = os != nullptr && !zero_images;
-                if (shifts_per_hit || ov != nullptr) {
-                    alignas(64) double lx[8], ly[8], lz[8];
+                if (ov != nullptr) {
+                    store_vectors(ov + 3 * std::size_t(n), __mmask8(hit), __mmask8(turned), dx, dy,
+                                  dz);
+                }
+                if (os != nullptr && !zero_images) {
                     alignas(32) std::int32_t lb[8];
-                    _mm512_store_pd(lx, _mm512_maskz_compress_pd(__mmask8(hit), dx));
-                    _mm512_store_pd(ly, _mm512_maskz_compress_pd(__mmask8(hit), dy));
-                    _mm512_store_pd(lz, _mm512_maskz_compress_pd(__mmask8(hit), dz));
                     _mm256_store_si256(reinterpret_cast<__m256i*>(lb),
                                        _mm256_maskz_compress_epi32(__mmask8(hit), lanes));
                     for (std::uint32_t h = 0; h < found; ++h) {
-                        const bool t = (turned >> h) & 1u;
+                        const std::int32_t sign = (turned >> h) & 1u ? -1 : 1;
                         const std::size_t p = std::size_t(n + h);
-                        if (shifts_per_hit) {
-                            const std::uint32_t c = b + std::uint32_t(lb[h]);
-                            const std::int32_t sign = t ? -1 : 1;
-                            for (std::uint32_t k = 0; k < 3; ++k) {
-                                os[3 * p + k] =
-                                    sign * ((rs[k] + image[3 * a + k]) - image[3 * c + k]);
-                            }
-                        }
-                        if (ov != nullptr) {
-                            const double sign = t ? -1.0 : 1.0;
-                            ov[3 * p] = sign * lx[h] + 0.0;
-                            ov[3 * p + 1] = sign * ly[h] + 0.0;
-                            ov[3 * p + 2] = sign * lz[h] + 0.0;
+                        const std::uint32_t c = b + std::uint32_t(lb[h]);
+                        for (std::uint32_t k = 0; k < 3; ++k) {
+                            os[3 * p + k] = sign * ((rs[k] + image[3 * a + k]) - image[3 * c + k]);
                         }
                     }
                 }
