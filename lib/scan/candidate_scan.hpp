@@ -262,18 +262,9 @@ class CandidateScanner {
         if (count == 0) {
             return;
         }
-        tests_ += std::uint64_t(a1 - a0) * candidates;
-        for (std::uint32_t q = 0; q < count && half_; ++q) {
-            for (std::uint32_t a = a0; a < a1 && list[q].own; ++a) { // a half list skips b <= a
-                tests_ -= std::min(std::max(a + 1, list[q].b0), list[q].b1) - list[q].b0;
-            }
-        }
-        std::uint64_t left_out = 0;
         const PairSink::Slots out =
             sink_.claim(stores_per_hit() * (a1 - a0) * candidates + kernel_slack);
-        const std::uint32_t found = range_kernel_(range_input_, a0, a1, list, count, out, left_out);
-        store(out, found);
-        tests_ -= left_out;
+        store(out, range_kernel_(range_input_, a0, a1, list, count, out, tests_));
     }
 
     static ImageShift image_shift(const CandidateRange& r) {

@@ -110,29 +110,10 @@ inline Candidates candidates(const RangeScanInput& in, std::uint32_t a, std::uin
     return c;
 }
 
-// The candidates the spans leave out, summed over the atoms and the pruned ranges of a call
-// (candidates() of each, without its branches).
-std::uint64_t spared(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
-                     const CandidateRange* ranges, std::uint32_t count, const Spans& spans) {
-    std::uint64_t whole = 0, kept = 0;
-    for (std::uint32_t q = 0; q < std::min(count, pruned_ranges); ++q) {
-        const CandidateRange& r = ranges[q];
-        const bool later = r.own && in.half;
-        for (std::uint32_t a = a0; a < a1; ++a) {
-            const std::uint32_t from = later ? a + 1 : 0;
-            const std::uint32_t b = std::max(r.b0, from), kb = std::max(spans.b[q][a - a0], from);
-            const std::uint32_t ke = spans.e[q][a - a0];
-            whole += r.b1 > b ? r.b1 - b : 0;
-            kept += ke > kb ? ke - kb : 0;
-        }
-    }
-    return whole - kept;
-}
-
-// Fills spans for atoms [a0, a1) and ranges [0, min(count, pruned_ranges)), one at a time;
-// returns the candidates they leave out. (Out of line like the vector versions: inlined, it lets
-// GCC 12 take the spans it fills for uninitialised where spared() reads them.)
-[[gnu::noinline]] std::uint64_t trim_scalar(const RangeScanInput& in, std::uint32_t a0,
+// Fills spans for atoms [a0, a1) and ranges [0, min(count, pruned_ranges)), one at a time. (Out
+// of line like the vector versions: inlined, it lets GCC 12 take the spans it fills for
+// uninitialised where the scan reads them.)
+[[gnu::noinline]] void trim_scalar(const RangeScanInput& in, std::uint32_t a0,
                                             std::uint32_t a1, const CandidateRange* ranges,
                                             std::uint32_t count, Spans& spans) {
     for (std::uint32_t q = 0; q < std::min(count, pruned_ranges); ++q) {
@@ -153,7 +134,6 @@ std::uint64_t spared(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a
             spans.e[q][a - a0] = e;
         }
     }
-    return spared(in, a0, a1, ranges, count, spans);
 }
 
 // Atom a against candidates [b, e) of range r, one at a time; returns the next free slot.
@@ -176,14 +156,17 @@ inline std::uint32_t scan_scalar(const RangeScanInput& in, std::uint32_t a, std:
 template <bool Pruned>
 std::uint32_t scan_generic(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
                            const CandidateRange* ranges, std::uint32_t count, const PairSlots& out,
-                           const Spans* spans) {
+                           const Spans* spans, std::uint64_t& tested) {
     std::uint32_t n = 0;
+    std::uint64_t t = 0;
     for (std::uint32_t a = a0; a < a1; ++a) {
         for (std::uint32_t q = 0; q < count; ++q) {
             const Candidates c = candidates<Pruned>(in, a, a0, ranges[q], q, spans);
+            t += c.e > c.b ? c.e - c.b : 0;
             n = scan_scalar(in, a, c.b, c.e, ranges[q], out, n);
         }
     }
+    tested += t;
     return n;
 }
 
@@ -197,7 +180,7 @@ __attribute__((target("avx2"))) inline __m256d gap(__m256d t, double lower, doub
 }
 
 // trim_scalar() with four atoms in the lanes of each half: the same terms, so the same spans.
-__attribute__((target("avx2"))) std::uint64_t trim_avx2(const RangeScanInput& in, std::uint32_t a0,
+__attribute__((target("avx2"))) void trim_avx2(const RangeScanInput& in, std::uint32_t a0,
                                                         std::uint32_t a1,
                                                         const CandidateRange* ranges,
                                                         std::uint32_t count, Spans& spans) {
@@ -246,7 +229,6 @@ __attribute__((target("avx2"))) std::uint64_t trim_avx2(const RangeScanInput& in
         _mm256_storeu_si256(reinterpret_cast<__m256i*>(spans.b[q]), b);
         _mm256_storeu_si256(reinterpret_cast<__m256i*>(spans.e[q]), e);
     }
-    return spared(in, a0, a1, ranges, count, spans);
 }
 
 // AVX2: four candidates at a time, the hits of a group stored one by one through store_hit().
@@ -254,9 +236,10 @@ template <bool Pruned>
 __attribute__((target("avx2"))) std::uint32_t
 scan_avx2(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
           const CandidateRange* ranges, std::uint32_t count, const PairSlots& out,
-          const Spans* spans) {
+          const Spans* spans, std::uint64_t& tested) {
     const __m256d vcut = _mm256_set1_pd(in.cutoff_sq);
     std::uint32_t n = 0;
+    std::uint64_t t = 0;
     for (std::uint32_t a = a0; a < a1; ++a) {
         const __m256d vax = _mm256_set1_pd(in.x[a]), vay = _mm256_set1_pd(in.y[a]),
                       vaz = _mm256_set1_pd(in.z[a]);
@@ -265,6 +248,7 @@ scan_avx2(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
             const __m256d vvx = _mm256_set1_pd(r.v[0]), vvy = _mm256_set1_pd(r.v[1]),
                           vvz = _mm256_set1_pd(r.v[2]);
             const Candidates c = candidates<Pruned>(in, a, a0, r, q, spans);
+            t += c.e > c.b ? c.e - c.b : 0;
             std::uint32_t b = c.b;
             for (; b + 4 <= c.e; b += 4) {
                 const __m256d dx =
@@ -297,6 +281,7 @@ scan_avx2(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
             n = scan_scalar(in, a, b, c.e, r, out, n);
         }
     }
+    tested += t;
     return n;
 }
 
@@ -329,7 +314,7 @@ __attribute__((target("avx512f"))) inline __m512d gap(__m512d t, double lower, d
 }
 
 // trim_scalar() with the atoms in the lanes: the same terms, so the same spans.
-__attribute__((target("avx512f,avx512vl,avx512dq"))) std::uint64_t
+__attribute__((target("avx512f,avx512vl,avx512dq"))) void
 trim_avx512(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
             const CandidateRange* ranges, std::uint32_t count, Spans& spans) {
     const __mmask8 atoms = __mmask8((1u << (a1 - a0)) - 1);
@@ -362,7 +347,6 @@ trim_avx512(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
         _mm256_storeu_si256(reinterpret_cast<__m256i*>(spans.b[q]), b);
         _mm256_storeu_si256(reinterpret_cast<__m256i*>(spans.e[q]), e);
     }
-    return spared(in, a0, a1, ranges, count, spans);
 }
 
 // D of the `hit` lanes of (dx, dy, dz), compressed and interleaved into 24 doubles at `to` (x, y, z
@@ -400,7 +384,7 @@ template <bool Pruned>
 __attribute__((target("avx512f,avx512vl,avx512dq,bmi2"))) std::uint32_t
 scan_avx512(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
             const CandidateRange* ranges, std::uint32_t count, const PairSlots& out,
-            const Spans* spans) {
+            const Spans* spans, std::uint64_t& tested) {
     // Locals: the vector stores below may alias anything, so fields read through `in` and
     // `out` would be read again after each.
     const double* const x = in.x;
@@ -419,6 +403,7 @@ scan_avx512(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
     const __m512d vcut = _mm512_set1_pd(cutoff_sq);
     const __m256i lanes = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
     std::uint32_t n = 0;
+    std::uint64_t t = 0;
     for (std::uint32_t a = a0; a < a1; ++a) {
         const __m512d vax = _mm512_set1_pd(x[a]), vay = _mm512_set1_pd(y[a]),
                       vaz = _mm512_set1_pd(z[a]);
@@ -429,6 +414,7 @@ scan_avx512(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
             if (span.b >= span.e) {
                 continue;
             }
+            t += span.e - span.b;
             const std::uint32_t b1 = span.e;
             const bool own = r.own, self_turn = r.self_turn;
             const std::int32_t rs[3] = {r.s[0], r.s[1], r.s[2]};
@@ -516,6 +502,7 @@ scan_avx512(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
             }
         }
     }
+    tested += t;
     if (od != nullptr && !squares) {
         for (std::uint32_t k = 0; k < n; k += 8) {
             // only the stored lanes: the slack past n may hold anything (a trapping NaN)
@@ -531,21 +518,21 @@ scan_avx512(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
 
 // A kernel version: the blocks of `Blocks<true>` over the spans `trim` leaves where the boxes
 // pay, of `Blocks<false>` over whole ranges otherwise (no span looked up per atom and range).
-using Trim = std::uint64_t (*)(const RangeScanInput&, std::uint32_t, std::uint32_t,
-                               const CandidateRange*, std::uint32_t, Spans&);
+using Trim = void (*)(const RangeScanInput&, std::uint32_t, std::uint32_t, const CandidateRange*,
+                      std::uint32_t, Spans&);
 using Blocks = std::uint32_t (*)(const RangeScanInput&, std::uint32_t, std::uint32_t,
                                  const CandidateRange*, std::uint32_t, const PairSlots&,
-                                 const Spans*);
+                                 const Spans*, std::uint64_t&);
 template <Trim trim, Blocks pruned, Blocks whole>
 std::uint32_t scan(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
                    const CandidateRange* ranges, std::uint32_t count, const PairSlots& out,
-                   std::uint64_t& left_out) {
+                   std::uint64_t& tested) {
     if (worth_pruning(in, a0, a1, ranges, count)) {
         Spans spans;
-        left_out += trim(in, a0, a1, ranges, count, spans);
-        return pruned(in, a0, a1, ranges, count, out, &spans);
+        trim(in, a0, a1, ranges, count, spans);
+        return pruned(in, a0, a1, ranges, count, out, &spans, tested);
     }
-    return whole(in, a0, a1, ranges, count, out, nullptr);
+    return whole(in, a0, a1, ranges, count, out, nullptr, tested);
 }
 
 } // namespace

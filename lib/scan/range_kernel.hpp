@@ -88,10 +88,10 @@ struct PairSlots {
 /// atom, each atom's range by range in the ranges' order (so an atom's pairs of one call are one
 /// run, which grouping by i moves whole); returns how many. The slots have room for (a1 - a0)
 /// times the ranges' candidates, plus kernel_slack.
-/// `left_out` grows by the candidates that the cluster boxes left untested.
+/// `tested` grows by the candidates tested: those the half stencil and the cluster boxes leave.
 using RangeKernel = std::uint32_t (*)(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
                                       const CandidateRange* ranges, std::uint32_t count,
-                                      const PairSlots& out, std::uint64_t& left_out);
+                                      const PairSlots& out, std::uint64_t& tested);
 
 /// CandidateRange::reach_sq for a range through translation v, cutoff `cutoff`, coordinates of
 /// magnitude at most `bound`: the cutoff plus a margin far wider than the rounding of the
