@@ -20,7 +20,8 @@
 //
 // Two ways to consume pairs: compute() stores them struct-of-arrays in a reusable NeighborList
 // (optionally grouped by i, or sorted by i, j, S, with per-atom offsets), and for_each_pair() calls
-// a function for each pair without storing anything (pairs reach it in blocks of a few hundred).
+// a function for each pair without storing anything (pairs reach it in blocks of up to about a
+// thousand).
 #pragma once
 
 #include <array>

@@ -3,10 +3,11 @@
 // occupancy work model that the MPI load balance takes.
 //
 // The skin model. With g = 1/2 for half lists (else 1), r_l = r_c + skin, h = r_l / k and
-// n(k) = stencil_cells(k), per atom:
+// n(k) = stencil_cells(k), per atom (a build walks the half stencil for either list, a full one
+// turning each pair it finds around):
 //     candidates       n_c = g rho (4 pi / 3) r_l^3
-//     build tests      n_t = g rho n(k) h^3
-//     cell visits      n_v = g n(k) / (rho h^3)
+//     build tests      n_t = rho n(k) h^3 / 2
+//     cell visits      n_v = n(k) / (2 rho h^3)
 //     C_b = build_per_atom + build_per_test n_t + build_per_cell_visit n_v
 //     C_f = refresh_per_atom + refresh_per_candidate n_c
 //     steps per build  L = 1 + skin / (2 v)

@@ -16,8 +16,9 @@
 // them while those stay the same (the reach's atom spread is rounded up for that), and a search
 // of one cell along a trajectory, or of the same cell again, skips the enumeration.
 //
-// Half lists take a < b through every image and a == b through the positive half of the images
-// (the scanner orients what it is given canonically). Where S = 0 is the only image (a molecule,
+// Half lists, and full lists found through the half stencil (BuildPlan::mirrored), take a < b
+// through every image and a == b through the positive half of the images (the scanner orients
+// or turns around what it is given). Where S = 0 is the only image (a molecule,
 // or a cutoff short of every image) of a few atoms, all atoms form one candidate range through
 // the range kernel instead. The work units are the atoms a.
 #include <algorithm>

@@ -24,13 +24,14 @@
 // of the tree is walked once per group of leaves, not once per leaf). The shifts are those for
 // which the root can reach itself (all images within the radius, several when the cutoff exceeds
 // the box; S = 0 on open axes). A full list takes every surviving (A, B, S), with `own` for (A, A,
-// 0). A half list takes each unordered pair once: for S = 0 only leaves B >= A (B == A: b > a), and
-// for S != 0 only S lexicographically positive, with every (A, B) including A == B and a == b (an
-// atom and its own image). The pair (b, a, -S) of (a, b, S) lies in (B, A, -S), whose box is the
-// negated one, so pruning keeps both or neither and this choice loses nothing. Consecutive leaves
-// found with one shift are adjacent in the atom order and are scanned as one range. The work units
-// are the leaves; a leaf's candidates depend on that leaf only, so any split of the units gives the
-// same pairs in the same order.
+// 0). A half list (or a full one found through the half stencil, BuildPlan::mirrored) takes each
+// unordered pair once: for S = 0 only leaves B >= A (B == A: b > a), and for S != 0 only S
+// lexicographically positive, with every (A, B) including A == B and a == b (an atom and its own
+// image). The pair (b, a, -S) of (a, b, S) lies in (B, A, -S), whose box is the negated one, so
+// pruning keeps both or neither and this choice loses nothing. Consecutive leaves found with one
+// shift are adjacent in the atom order and are scanned as one range. The work units are the leaves;
+// a leaf's candidates depend on that leaf only, so any split of the units gives the same pairs in
+// the same order.
 #include <algorithm>
 #include <array>
 #include <cmath>

@@ -238,7 +238,8 @@ BuildPlan plan_build(const NeighborOptions& options, const Box& frame,
                                                           : 1.0;
     // A full list with one cutoff and no query, in the search's order, comes from the half
     // stencil: turning a found pair around costs its stores, finding it again costs a search.
-    // Not when grouped by i: the turned pairs, one per run, would be moved one by one.
+    // Not with offsets (grouped, sorted or ranked): grouping would move the turned pairs one by
+    // one.
     plan.mirrored = fused && !options.half && !options.with_offsets();
     plan.backend = backend_for(plan.cells_per_cutoff);
     if (options.cells_per_cutoff == 0 && plan.cells_per_cutoff != 1 &&

@@ -73,7 +73,9 @@ SkinPrediction predict_skin_cost(const SkinCostModel& model, double skin, CellSi
     if (!(std::isfinite(skin) && skin >= 0)) {
         detail::fail<InvalidArgument>("skin must be >= 0 (got ", skin, ")");
     }
-    const double g = model.half ? 0.5 : 1.0;
+    // Candidates: each pair once in a half list. Builds: the half stencil either way (a full
+    // list with one cutoff is found through it and turned around).
+    const double g = model.half ? 0.5 : 1.0, g_build = 0.5;
     const double rho = model.density;
     const double r = model.cutoff + skin;
     SkinPrediction p;
@@ -84,8 +86,8 @@ SkinPrediction predict_skin_cost(const SkinCostModel& model, double skin, CellSi
     const double cells = double(stencil_cells(p.cells_per_cutoff));
     p.steps_per_build = 1 + skin / (2 * model.displacement_per_step);
     p.candidates_per_atom = g * rho * detail::sphere_volume(r);
-    p.build_tests_per_atom = g * rho * cells * h * h * h;
-    const double visits = g * cells / (rho * h * h * h);
+    p.build_tests_per_atom = g_build * rho * cells * h * h * h;
+    const double visits = g_build * cells / (rho * h * h * h);
     p.build_cost = model.build_per_atom + model.build_per_test * p.build_tests_per_atom +
                    model.build_per_cell_visit * visits;
     p.refresh_cost = model.refresh_per_atom + model.refresh_per_candidate * p.candidates_per_atom;

@@ -45,19 +45,21 @@ struct ImageShift {
 class CandidateScanner {
   public:
     /// Scans `atoms` (in `frame`'s box) for the pairs `rule` takes, of a full or a `half` list
-    /// (a subset one when the table has query flags), into `sink`. `mirrored` (a full list with
-    /// a uniform cutoff and no query): the backend names each unordered pair once, as for a half
-    /// list, and each hit is stored as found and then turned around (-S, -D, the same d), so
-    /// the full list costs a half search plus its stores.
+    /// (a subset one when the table has query flags), into `sink`. `mirrored`: a full list of
+    /// BuildPlan::mirrored, whose backend names each unordered pair once, as for a half list,
+    /// and each hit is stored as found and then turned around (-S, -D, the same d).
     CandidateScanner(const AtomTable& atoms, const SearchFrame& frame, const CutoffRule& rule,
                      bool half, bool mirrored, PairSink& sink)
         : x_(atoms.x.data()), y_(atoms.y.data()), z_(atoms.z.data()), image_(atoms.image.data()),
           zero_images_(atoms.zero_images), index_(atoms.index.data()), h_(frame.box().matrix()),
-          cutoff_sq_(rule.threshold_sq()), rule_(rule), half_(half || mirrored),
+          cutoff_sq_(rule.threshold_sq()), rule_(rule), half_stencil_(half || mirrored),
           orient_(half && !mirrored), mirrored_(mirrored && !half), frame_(frame), sink_(sink),
           query_(atoms.subset() ? atoms.query.data() : nullptr),
-          subset_half_(atoms.subset() && half),
-          range_input_{x_, y_, z_, index_, image_, zero_images_, cutoff_sq_, half_, orient_},
+          subset_half_(atoms.subset() && half), range_input_{x_,         y_,
+                                                             z_,         index_,
+                                                             image_,     zero_images_,
+                                                             cutoff_sq_, half_stencil_,
+                                                             orient_},
           range_kernel_(range_kernel()) {}
 
     /// Whether atom a can be the first atom of a pair (false only outside the query of a full
@@ -75,8 +77,9 @@ class CandidateScanner {
     }
 
     /// Every a in [a0, a1) with every b in [b0, b1) through `s`. With `own` the two ranges hold
-    /// the same atoms through a zero shift (b0 <= a0, a1 <= b1): a full list skips b == a, a half
-    /// list takes only b > a (then b0 == a0 is required, so each unordered pair is seen once).
+    /// the same atoms through a zero shift (b0 <= a0, a1 <= b1): a full list skips b == a, the half
+    /// stencil (a half or mirrored list) takes only b > a (then b0 == a0 is required, so each
+    /// unordered pair is seen once).
     void ranges(std::uint32_t a0, std::uint32_t a1, std::uint32_t b0, std::uint32_t b1,
                 const ImageShift& s, bool own) {
         if (subset_half_) {
@@ -89,8 +92,8 @@ class CandidateScanner {
         }
         tests_ += std::uint64_t(a1 - a0) * std::uint64_t(b1 - b0);
         // Up to kernel_group atoms a in one kernel call. In the own range all of them are
-        // tested against the same range and the pairs a full list skips (b == a) or a half list
-        // leaves to the other atom (b < a) are dropped after the test: that is a few tests more,
+        // tested against the same range and the pairs a full list skips (b == a) or the half
+        // stencil leaves to the other atom (b < a) are dropped after the test: a few tests more,
         // against a kernel call per atom.
         std::uint32_t group[kernel_group];
         for (std::uint32_t a = a0; a < a1; a += kernel_group) {
@@ -98,7 +101,8 @@ class CandidateScanner {
             for (std::uint32_t g = 0; g < last - a; ++g) {
                 group[g] = a + g;
             }
-            scan(group, last - a, own && half_ ? a + 1 : b0, b1, s, own ? Scan::own : Scan::plain);
+            scan(group, last - a, own && half_stencil_ ? a + 1 : b0, b1, s,
+                 own ? Scan::own : Scan::plain);
         }
     }
 
@@ -122,14 +126,13 @@ class CandidateScanner {
             }
         }
         // As many atoms at a time as a claim holds against the longest range (block mode claims
-        // a few hundred pairs at most; a mirrored list stores each hit twice).
+        // a block at most; a mirrored list stores each hit twice).
         std::size_t longest = 1;
         for (std::uint32_t q = 0; q < count; ++q) {
             longest = std::max<std::size_t>(longest, list[q].b1 - list[q].b0);
         }
         const std::size_t room = (sink_.claim_limit() - kernel_slack) / stores_per_hit();
-        const auto step =
-            std::uint32_t(std::clamp<std::size_t>(room / longest, 1, kernel_group));
+        const auto step = std::uint32_t(std::clamp<std::size_t>(room / longest, 1, kernel_group));
         for (std::uint32_t g0 = a0; g0 < a1; g0 += step) {
             const std::uint32_t g1 = std::min(g0 + step, a1);
             const std::size_t most = room / (g1 - g0);
@@ -264,7 +267,7 @@ class CandidateScanner {
         }
         const PairSink::Slots out =
             sink_.claim(stores_per_hit() * (a1 - a0) * candidates + kernel_slack);
-        store(out, range_kernel_(range_input_, a0, a1, list, count, out, tests_));
+        commit_hits(out, range_kernel_(range_input_, a0, a1, list, count, out, tests_));
     }
 
     static ImageShift image_shift(const CandidateRange& r) {
@@ -330,7 +333,7 @@ class CandidateScanner {
     // remain (in order).
     std::uint32_t drop_others(const Side& side, std::uint32_t start, std::uint32_t* hits,
                               double* d_sq, std::uint32_t found) const {
-        const bool later = half_ && query_ == nullptr;
+        const bool later = half_stencil_ && query_ == nullptr;
         std::uint32_t kept = 0;
         for (std::uint32_t h = 0; h < found; ++h) {
             const std::uint32_t a = side.a[hits[h] / kernel_block];
@@ -462,7 +465,7 @@ class CandidateScanner {
                 out.vectors[3 * h + 2] = ((z_[b] - side.z[g]) + s.v[2]) + 0.0;
             }
         }
-        store(out, found);
+        commit_hits(out, found);
     }
 
     // A candidate within the cutoff, as it would be stored: i, j, S (s plus the images), D, d^2.
@@ -519,7 +522,7 @@ class CandidateScanner {
     std::size_t stores_per_hit() const { return mirrored_ ? 2 : 1; }
 
     // Keeps the `found` pairs written to `out`, followed in a mirrored list by each turned around.
-    void store(const PairSink::Slots& out, std::uint32_t found) {
+    void commit_hits(const PairSink::Slots& out, std::uint32_t found) {
         if (mirrored_) {
             PairSink::put_turned(out, found);
         }
@@ -551,9 +554,9 @@ class CandidateScanner {
     double cutoff_ = std::sqrt(cutoff_sq_);
     double box_bound_ = 0;
     const CutoffRule& rule_;
-    bool half_;     // the backend names each unordered pair once (a half or mirrored list)
-    bool orient_;   // each pair is turned into its canonical orientation (a half list)
-    bool mirrored_; // each pair is stored twice, as found and turned around
+    bool half_stencil_; // the backend names each unordered pair once (a half or mirrored list)
+    bool orient_;       // each pair is turned into its canonical orientation (a half list)
+    bool mirrored_;     // each pair is stored twice, as found and turned around
     const SearchFrame& frame_;
     PairSink& sink_;
     const std::uint8_t* query_; // null unless a subset search (see above)

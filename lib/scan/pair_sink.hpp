@@ -1,10 +1,10 @@
 // Where found pairs go: a PairSink appends them to struct-of-arrays columns through raw
 // pointers. In storing mode the columns belong to a NeighborList and grow geometrically (a
 // push_back per field would re-check capacity five times per pair), refusing to grow past
-// max_pairs or, in bytes, max_bytes (list_limits.hpp). In block mode they are a fixed block of a
-// few hundred pairs that is handed to a visitor each time it fills (for_each_pair), with shifts
-// already in the caller's frame. Either way add() is the same few stores; only the rare "full" path
-// differs.
+// max_pairs or, in bytes, max_bytes (list_limits.hpp). In block mode they are a fixed block of
+// about a thousand pairs that is handed to a visitor each time it fills (for_each_pair), with
+// shifts already in the caller's frame. Either way add() is the same few stores; only the rare
+// "full" path differs.
 #pragma once
 
 #include <algorithm>

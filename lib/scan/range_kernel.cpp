@@ -104,7 +104,7 @@ inline Candidates candidates(const RangeScanInput& in, std::uint32_t a, std::uin
     if (Pruned && q < pruned_ranges) {
         c = Candidates{spans->b[q][a - a0], spans->e[q][a - a0]};
     }
-    if (r.own && in.half) {
+    if (r.own && in.half_stencil) {
         c.b = std::max(c.b, a + 1);
     }
     return c;
@@ -113,9 +113,9 @@ inline Candidates candidates(const RangeScanInput& in, std::uint32_t a, std::uin
 // Fills spans for atoms [a0, a1) and ranges [0, min(count, pruned_ranges)), one at a time. (Out
 // of line like the vector versions: inlined, it lets GCC 12 take the spans it fills for
 // uninitialised where the scan reads them.)
-[[gnu::noinline]] void trim_scalar(const RangeScanInput& in, std::uint32_t a0,
-                                            std::uint32_t a1, const CandidateRange* ranges,
-                                            std::uint32_t count, Spans& spans) {
+[[gnu::noinline]] void trim_scalar(const RangeScanInput& in, std::uint32_t a0, std::uint32_t a1,
+                                   const CandidateRange* ranges, std::uint32_t count,
+                                   Spans& spans) {
     for (std::uint32_t q = 0; q < std::min(count, pruned_ranges); ++q) {
         const CandidateRange& r = ranges[q];
         for (std::uint32_t a = a0; a < a1; ++a) {
@@ -181,9 +181,8 @@ __attribute__((target("avx2"))) inline __m256d gap(__m256d t, double lower, doub
 
 // trim_scalar() with four atoms in the lanes of each half: the same terms, so the same spans.
 __attribute__((target("avx2"))) void trim_avx2(const RangeScanInput& in, std::uint32_t a0,
-                                                        std::uint32_t a1,
-                                                        const CandidateRange* ranges,
-                                                        std::uint32_t count, Spans& spans) {
+                                               std::uint32_t a1, const CandidateRange* ranges,
+                                               std::uint32_t count, Spans& spans) {
     // The atoms, eight lanes (those past a1 repeat the last: their spans go unread).
     alignas(32) double ax[8], ay[8], az[8];
     for (std::uint32_t g = 0; g < 8; ++g) {
@@ -360,9 +359,8 @@ __attribute__((target("avx512f"))) inline __m512d signed_lanes(__m512d v, __mmas
     return _mm512_mask_sub_pd(_mm512_add_pd(c, zero), turned, zero, c);
 }
 
-__attribute__((target("avx512f"))) inline void store_vectors(double* to, __mmask8 hit,
-                                                             __mmask8 turned, __m512d dx,
-                                                             __m512d dy, __m512d dz) {
+__attribute__((target("avx512f"))) inline void
+store_vectors(double* to, __mmask8 hit, __mmask8 turned, __m512d dx, __m512d dy, __m512d dz) {
     const __m512d x = signed_lanes(dx, hit, turned), y = signed_lanes(dy, hit, turned),
                   z = signed_lanes(dz, hit, turned);
     // x and y into their places of each register (index 8 + k: y's lane k), then z over the gaps.

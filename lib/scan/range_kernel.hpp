@@ -17,10 +17,10 @@
 // far wider than any rounding). The clusters left out hold no pair of that atom, so the exact
 // test still decides every pair, the pairs come in the same order and only the candidates
 // change: on diamond Si (rc 5, cells of one cutoff, about 7 atoms each: a cluster per cell) 6.5
-// per stored pair become 3.4, whose lattice leaves the boxes well inside their cells; on random
-// atoms (rc 6, about 24 atoms per cell) 7.3 become 3.1, where the boxes of whole cells left 6.5.
-// A span runs along a row, so the slabs cut it at both ends to about the chord of the cutoff
-// sphere.
+// per stored pair of a half list become 3.4, whose lattice leaves the boxes well inside their
+// cells; on random atoms (rc 6, about 24 atoms per cell) 7.3 become 3.1, where the boxes of whole
+// cells left 6.5. A span runs along a row, so the slabs cut it at both ends to about the chord of
+// the cutoff sphere.
 //
 // The arithmetic is distance_kernel.hpp's, term for term: D = (x_b - x_a) + T, d^2 = dx dx +
 // dy dy + dz dz without fused multiply-adds, d = sqrt(d^2), a zero component of D stored as +0,
@@ -42,8 +42,8 @@ struct CandidateRange {
     std::uint32_t b0, b1;
     std::int32_t s[3]; ///< the shift in the search frame
     double v[3];       ///< its vector H s
-    /// The range holds the home atoms through a zero shift: a full list skips b == a, a half
-    /// list takes b > a only.
+    /// The range holds the home atoms through a zero shift: a full list skips b == a, the half
+    /// stencil takes b > a only.
     bool own;
     /// Half lists: whether the pair of an atom with its own image through s is turned around
     /// (its canonical orientation has -S; set by the scanner from the caller's frame).
@@ -64,7 +64,7 @@ struct RangeScanInput {
     const std::int32_t* image;  ///< 3 per atom
     bool zero_images;           ///< every image is 0
     double cutoff_sq;           ///< d^2 < cutoff_sq counts
-    bool half;                  ///< the half stencil: the own range takes b > a only
+    bool half_stencil;          ///< the own range takes b > a only (a half or mirrored list)
     bool orient;                ///< each pair in its canonical orientation (a half list)
     /// Bounding boxes of the atoms of each cluster, 6 per cluster (lower x, y, z, upper x, y,
     /// z), or null (no pruning); cluster c holds atoms [cluster_start[c], cluster_start[c + 1]).

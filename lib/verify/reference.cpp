@@ -141,6 +141,9 @@ ReferencePairs reference_pairs(const Box& box, PointsView positions, const Neigh
         search_options.species = options.species;
         search_options.species_cutoffs = options.species_cutoffs;
         search_options.half = options.half;
+        // A full list grouped: through the full stencil, not the half one whose pairs the
+        // checked search turns around.
+        search_options.grouped = !options.half;
         search_options.threads = options.threads;
         search_options.max_pairs = options.max_pairs;
         search_options.max_bytes = options.max_bytes;

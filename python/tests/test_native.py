@@ -184,16 +184,16 @@ def test_grouped_list_is_the_list_grouped_by_i_with_offsets(seed):
         plain = tricell.NeighborList(cutoff, full=full, backend=backend, threads=1 + seed % 3)
         grouped = tricell.NeighborList(cutoff, full=full, backend=backend, grouped=True)
         assert grouped.grouped and not plain.grouped
-        found = plain.compute(positions, cell, pbc, "ijSd")
-        i, j, S, d, o = grouped.compute(positions, cell, pbc, "ijSdo")
+        found = plain.compute(positions, cell, pbc, "ijSdD")
+        i, j, S, d, D, o = grouped.compute(positions, cell, pbc, "ijSdDo")
         if full:
-            rows = [np.column_stack((c[0], c[1], c[2], c[3])) for c in ((i, j, S, d), found)]
+            rows = [np.column_stack(c) for c in ((i, j, S, d, D), found)]
             rows = [r[np.lexsort(r.T[::-1])] for r in rows]
             np.testing.assert_array_equal(rows[0], rows[1], err_msg=f"seed {seed}, {backend}")
             assert np.all(np.diff(i.astype(np.int64)) >= 0)
         else:
             order = np.argsort(found[0], kind="stable")
-            for g, e in zip((i, j, S, d), found):
+            for g, e in zip((i, j, S, d, D), found):
                 np.testing.assert_array_equal(g, e[order], err_msg=f"seed {seed}, {backend}")
         assert o.dtype == np.int64 and len(o) == len(positions) + 1
         np.testing.assert_array_equal(o, np.searchsorted(i, np.arange(len(positions) + 1)))

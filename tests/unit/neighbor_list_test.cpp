@@ -326,6 +326,59 @@ TEST(NeighborList, BatchedOutputEqualsBruteForceForAnyThreadCount) {
     }
 }
 
+// A full list in the search's order is found through the half stencil and turned around: on
+// every backend its search makes the half list's distance tests, and about half of those
+// of the same list grouped (which keeps the full stencil), with the same pairs.
+TEST(NeighborList, UnorderedFullListSearchesTheHalfStencil) {
+    std::mt19937_64 rng{7};
+    std::uniform_real_distribution<double> u(0, 1);
+    const Box box =
+        Box::from_columns((Eigen::Matrix3d() << 14, 2, -1, 0, 13, 1.5, 0, 0, 15).finished(),
+                          tricell::Periodicity::all());
+    std::vector<Eigen::Vector3d> x;
+    for (int k = 0; k < 600; ++k) {
+        x.push_back(box.matrix() * Eigen::Vector3d(u(rng), u(rng), u(rng)));
+    }
+    const auto tests = [&](const NeighborOptions& o) {
+        tricell::NeighborSearch search;
+        search.build(box, x, o);
+        double sum = 0;
+        for (const double t : search.unit_work().measured) {
+            sum += t;
+        }
+        return sum;
+    };
+    for (const SearchBackend backend : tricell::search_backends()) {
+        SCOPED_TRACE(tricell::backend_name(backend));
+        NeighborOptions o = with_cutoff(4);
+        o.backend = backend;
+        o.half = true;
+        const double half = tests(o);
+        o.half = false;
+        const double full = tests(o);
+        o.grouped = true;
+        const double grouped = tests(o);
+        EXPECT_NEAR(full, half, 0.02 * half); // kernel calls of fewer atoms may prune differently
+        EXPECT_GT(grouped, 1.6 * full);
+        NeighborList unordered, by_i;
+        o.quantities.vectors = true;
+        o.grouped = false;
+        tricell::compute_neighbors(box, x, o, unordered);
+        o.grouped = true;
+        tricell::compute_neighbors(box, x, o, by_i);
+        const tricell::testing::PairMap a = tricell::testing::to_map(unordered);
+        const tricell::testing::PairMap b = tricell::testing::to_map(by_i);
+        ASSERT_EQ(a.size(), unordered.size());
+        ASSERT_EQ(a.size(), b.size());
+        for (const auto& [key, value] : a) {
+            const auto found = b.find(key);
+            ASSERT_TRUE(found != b.end());
+            EXPECT_EQ(found->second.distance, value.distance);
+            EXPECT_EQ(found->second.vector, value.vector);
+        }
+    }
+}
+
 TEST(NeighborList, DirectBackendOrderIsTheSameForAnyThreadCount) {
     // An open box: S = 0 is the direct backend's only image. A few atoms take one range through
     // the range kernel, many the per-pair path; either way the unordered list is identical for

@@ -74,8 +74,9 @@ Case random_case(std::mt19937_64& rng, int trial) {
     c.in.index = c.index.data(), c.in.image = c.image.data();
     c.in.zero_images = trial % 3 == 0;
     c.in.cutoff_sq = 2.25;
-    c.in.half = trial % 4 >= 2;
-    c.in.orient = c.in.half && trial % 8 != 2; // a mirrored full list's half stencil otherwise
+    c.in.half_stencil = trial % 4 >= 2;
+    c.in.orient =
+        c.in.half_stencil && trial % 8 != 2; // a mirrored full list's half stencil otherwise
     c.shifts = trial % 5 != 1, c.distances = trial % 7 != 2, c.vectors = trial % 3 != 2;
     c.squares = trial % 11 == 3;
     return c;
@@ -114,7 +115,7 @@ std::uint64_t whole_candidates(const Case& c) {
     std::uint64_t whole = 0;
     for (const CandidateRange& r : c.ranges) {
         for (std::uint32_t a = c.a0; a < c.a1; ++a) {
-            const std::uint32_t first = r.own && c.in.half ? std::max(r.b0, a + 1) : r.b0;
+            const std::uint32_t first = r.own && c.in.half_stencil ? std::max(r.b0, a + 1) : r.b0;
             whole += r.b1 > first ? r.b1 - first : 0;
         }
     }
@@ -201,8 +202,9 @@ CellCase random_cell_case(std::mt19937_64& rng, int trial) {
     }
     c.in.cutoff_sq = 2.25;
     c.in.zero_images = trial % 5 == 0;
-    c.in.half = trial % 4 >= 2;
-    c.in.orient = c.in.half && trial % 8 != 2; // a mirrored full list's half stencil otherwise
+    c.in.half_stencil = trial % 4 >= 2;
+    c.in.orient =
+        c.in.half_stencil && trial % 8 != 2; // a mirrored full list's half stencil otherwise
     c.shifts = trial % 5 != 1, c.distances = trial % 7 != 2, c.vectors = trial % 3 != 2;
     c.squares = trial % 11 == 3;
     if (atoms == 0) {
@@ -259,7 +261,8 @@ TEST(RangeKernel, EveryVersionMatchesThePortableOneBitForBit) {
         std::uint32_t hits = 0;
         for (const CandidateRange& r : c.ranges) {
             for (std::uint32_t a = c.a0; a < c.a1; ++a) {
-                const std::uint32_t first = r.own && c.in.half ? std::max(r.b0, a + 1) : r.b0;
+                const std::uint32_t first =
+                    r.own && c.in.half_stencil ? std::max(r.b0, a + 1) : r.b0;
                 for (std::uint32_t b = first; b < r.b1; ++b) {
                     const double dx = (c.x[b] - c.x[a]) + r.v[0], dy = (c.y[b] - c.y[a]) + r.v[1],
                                  dz = (c.z[b] - c.z[a]) + r.v[2];

@@ -609,6 +609,13 @@ TEST(SkinCostModel, PredictionFollowsTheFormula) {
     EXPECT_NEAR(p.build_cost, build, 1e-20);
     EXPECT_NEAR(p.cost_per_step, build / p.steps_per_build + 2e-8 + 1.5e-9 * p.candidates_per_atom,
                 1e-20);
+    // A full list filters every pair's both orientations, but its build walks the half stencil.
+    SkinCostModel full = m;
+    full.half = false;
+    const auto f = tricell::predict_skin_cost(full, 0.4, CellSize::half_list_radius);
+    EXPECT_NEAR(f.candidates_per_atom, 2 * p.candidates_per_atom, 1e-12);
+    EXPECT_EQ(f.build_tests_per_atom, p.build_tests_per_atom);
+    EXPECT_EQ(f.build_cost, p.build_cost);
 }
 
 TEST(SkinCostModel, TunedSkinIsTheMinimum) {
