@@ -17,8 +17,9 @@
 //     when it is absent) and _atom_site_occupancy (default 1, must lie in [0, 1]).
 // Expansion: for each site row in file order, the operators in order, each image wrapped into
 // [0, 1); an image within merge_distance (Cartesian, minimum image) of an image already kept
-// for the same row is dropped, so special positions are not duplicated. Rows are never merged
-// with each other: two species sharing a site (substitutional disorder) both stay, each with its
+// for the same row is dropped, so special positions are not duplicated; with more than one
+// operator, a cell narrower than twice merge_distance is refused. Rows are never merged with
+// each other: two species sharing a site (substitutional disorder) both stay, each with its
 // occupancy.
 #include <algorithm>
 #include <cctype>
@@ -464,17 +465,20 @@ Structure parse_cif(const std::string& text, const std::string& name, const Read
 
     const std::vector<Operator> ops = read_operators(reader, box);
 
-    // Images closer than this are one atom. With the rounded fractional difference, the
-    // distance below is the true minimum image whenever it is under half the smallest width.
+    // Images closer than merge_distance are one atom. The rounded fractional difference gives
+    // the true minimum-image distance whenever that is under half the smallest width, so a cell
+    // narrower than twice merge_distance is refused rather than searched translate by translate.
     const double merge_sq = options.merge_distance * options.merge_distance;
-    const bool rounding_exact =
-        options.merge_distance < 0.5 * box.perpendicular_widths().minCoeff();
-    const auto same_place = [&](const Eigen::Vector3d& s, const Eigen::Vector3d& t) {
-        if (!rounding_exact) {
-            return box.minimum_image_distance(box.to_cartesian(Fractional(s)),
-                                              box.to_cartesian(Fractional(t))) <
-                   options.merge_distance;
+    const Eigen::Vector3d widths = box.perpendicular_widths();
+    for (int k = 0; k < 3 && ops.size() > 1; ++k) {
+        if (!(options.merge_distance < 0.5 * widths[k])) {
+            reader.fail(reader.line(x, 0), "the cell is ", widths[k], " Angstrom wide across ",
+                        "abc"[k], ", not more than twice ReadOptions::merge_distance = ",
+                        options.merge_distance, ", so the images of one site cannot be told "
+                        "apart; pass a smaller merge_distance");
         }
+    }
+    const auto same_place = [&](const Eigen::Vector3d& s, const Eigen::Vector3d& t) {
         Eigen::Vector3d d = s - t;
         for (int k = 0; k < 3; ++k) {
             d[k] -= std::round(d[k]);

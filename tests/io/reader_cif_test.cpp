@@ -108,6 +108,26 @@ TEST(CifReader, MergeDistanceDecidesWhetherRoundedSpecialPositionsMerge) {
                      "merge_distance must be finite and >= 0 (got -1)");
 }
 
+TEST(CifReader, RefusesACellNarrowerThanTwiceTheMergeDistance) {
+    // 0.015 Angstrom across a: images of one site could merge through many translates.
+    const std::string text = "data_t\n_cell_length_a 0.015\n_cell_length_b 1000\n"
+                             "_cell_length_c 1000\n_cell_angle_alpha 90\n_cell_angle_beta 90\n"
+                             "_cell_angle_gamma 90\n_symmetry_space_group_name_H-M 'F m -3 m'\n" +
+                             std::string(sites_header) + "Si1 Si 0.013 0.171 0.297\n";
+    EXPECT_THROW_MSG(cif(text), tricell::ParseError,
+                     "the cell is 0.015 Angstrom wide across a, not more than twice "
+                     "ReadOptions::merge_distance = 0.01");
+    ReadOptions fine;
+    fine.merge_distance = 1e-4; // a site in general position: 192 images, none merged
+    EXPECT_EQ(cif(text, fine).size(), 192u);
+    // One operator merges nothing, so the width does not matter.
+    EXPECT_EQ(cif("data_t\n_cell_length_a 0.015\n_cell_length_b 1\n_cell_length_c 1\n"
+                  "_cell_angle_alpha 90\n_cell_angle_beta 90\n_cell_angle_gamma 90\n" +
+                  std::string(sites_header) + "Si1 Si 0.1 0.2 0.3\n")
+                  .size(),
+              1u);
+}
+
 TEST(CifReader, PrefersTheOperatorLoopOverTheName) {
     const Structure s = cif(cell() + "_symmetry_space_group_name_H-M 'P 1'\n" + ops() +
                             sites_header + "A1 Na 0.1 0.2 0.3\n");

@@ -66,7 +66,8 @@ struct TRICELL_IO_API ReadOptions {
     /// CIF expansion: symmetry images of one atom-site row closer than this (Angstrom,
     /// minimum-image) are one atom. The default 0.01 Angstrom absorbs coordinates rounded to
     /// four decimals (such as 0.3333 for 1/3) in cells up to ~50 Angstrom, and is far below
-    /// any distance between distinct atoms. Must be finite and >= 0.
+    /// any distance between distinct atoms. Must be finite and >= 0. A CIF with more than one
+    /// symmetry operator whose cell is narrower than twice this is refused (ParseError).
     double merge_distance = 0.01;
     /// Refuse (ParseError, before reading the atoms) a file with more atoms than this: a POSCAR
     /// or XYZ count, or a CIF's sites times its symmetry operators. The default, 10^7 atoms,
