@@ -9,7 +9,8 @@
 // them by |T| into 64 buckets (a counting sort, stable). visit() then takes each pair (a, b) only
 // through the images that can bring it within the radius, |T| < radius + |x_b - x_a| (the exact
 // closest approach of that pair, |D| >= |T| - |x_b - x_a|): a prefix of the bucketed images, one
-// lookup per pair, tested in one tight loop (CandidateScanner::images). Candidates: N^2 x images,
+// lookup per pair, tested in one loop without a branch on the outcome; the hits of one atom a are
+// stored together (CandidateScanner::images, flush_images). Candidates: N^2 x images,
 // so this pays while that stays below the grid's N x stencil range scans (the cost model's
 // choose_direct()).
 // The images depend only on the frame, periodicity, radius and reach, so a pooled backend keeps
@@ -91,6 +92,7 @@ class DirectBackend final : public Backend {
         }
         // Every image with |T| < reach, S = 0 first, with its bucket of |T|.
         reach_sq_ = reach_ * reach_;
+        bucket_scale_ = double(buckets) / reach_sq_;
         found_.assign(1, Found{ImageShift{{0, 0, 0}, {0, 0, 0}}, 0, false});
         const Eigen::Vector3d c = h.col(2);
         const double cc = c.squaredNorm();
@@ -194,6 +196,7 @@ class DirectBackend final : public Backend {
                 const double r = (xb - xa).norm();
                 scan.images(ua, ub, all_.data(), all_end_[bucket_below(xa, xb, r)]);
             }
+            scan.flush_images();
         }
     }
 
@@ -222,10 +225,11 @@ class DirectBackend final : public Backend {
     }
 
     // The bucket of an image of squared length `norm_sq`: [0, reach^2) in `buckets` equal slices
-    // (monotone in the length, so every image shorter than a limit lies in the bucket of the
-    // limit's square or before; no square root per image).
+    // (monotone in the length, as a product with a positive constant rounds monotonically, so
+    // every image shorter than a limit lies in the bucket of the limit's square or before; no
+    // square root per image).
     std::size_t bucket(double norm_sq) const {
-        const double q = norm_sq / reach_sq_ * double(buckets);
+        const double q = norm_sq * bucket_scale_;
         return q < double(buckets - 1) ? std::size_t(q) : buckets - 1;
     }
 
@@ -267,7 +271,7 @@ class DirectBackend final : public Backend {
     bool mirrored_ = false;
     std::size_t atoms_ = 0;
     double search_radius_ = 0;
-    double reach_ = 1, reach_sq_ = 1;
+    double reach_ = 1, reach_sq_ = 1, bucket_scale_ = double(buckets);
     // What the images were enumerated for (same_images()).
     bool images_valid_ = false;
     Eigen::Matrix3d images_h_ = Eigen::Matrix3d::Zero();

@@ -183,7 +183,10 @@ class CandidateScanner {
     }
 
     /// The pair (a, b) through each of shifts[0, count) (the direct backend: few atoms, many
-    /// images). The same test, term for term, as pair() for each shift.
+    /// images). The same test, term for term, as pair() for each shift. The images are tested
+    /// without a branch on the outcome (each one is written to the pending hits and kept when it
+    /// is one); the pending hits of one atom a are stored together, with one claim and their
+    /// square roots taken at once, when they fill up, when a changes and at flush_images().
     void images(std::uint32_t a, std::uint32_t b, const ImageShift* shifts, std::size_t count) {
         if (subset_half_ && query_[a] == 0) {
             for (std::size_t k = 0; k < count && query_[b] != 0; ++k) {
@@ -194,21 +197,60 @@ class CandidateScanner {
         if (!wants(a)) {
             return;
         }
+        if (a != pending_a_) {
+            flush_images();
+            pending_a_ = a;
+        }
         tests_ += count;
         const double ax = x_[a], ay = y_[a], az = z_[a];
         const double bx = x_[b], by = y_[b], bz = z_[b];
+        for (std::size_t k0 = 0; k0 < count; k0 += pending_chunk) {
+            if (pending_ + pending_chunk > pending_room) {
+                flush_images();
+            }
+            const std::size_t k1 = std::min(count, k0 + pending_chunk);
+            std::uint32_t found = pending_;
+            for (std::size_t k = k0; k < k1; ++k) {
+                const ImageShift& s = shifts[k];
+                const double dx = (bx - ax) + s.v[0];
+                const double dy = (by - ay) + s.v[1];
+                const double dz = (bz - az) + s.v[2];
+                const double d_sq = dx * dx + dy * dy + dz * dz;
+                pending_b_[found] = b;
+                pending_shift_[found] = &s;
+                pending_d_sq_[found] = d_sq;
+                found += d_sq < cutoff_sq_ ? 1 : 0;
+            }
+            pending_ = found;
+        }
+    }
+
+    /// Stores the pending hits of images() (a backend calling images() calls this after each
+    /// atom a, so that an atom's pairs stay within its work unit).
+    void flush_images() {
+        if (pending_ == 0) {
+            return;
+        }
+        const std::uint32_t a = pending_a_;
+        const double ax = x_[a], ay = y_[a], az = z_[a];
         const std::uint32_t i = index_[a];
         const int ia = image_[3 * a], ib = image_[3 * a + 1], ic = image_[3 * a + 2];
-        for (std::size_t k = 0; k < count; ++k) {
-            const ImageShift& s = shifts[k];
-            const double dx = (bx - ax) + s.v[0];
-            const double dy = (by - ay) + s.v[1];
-            const double dz = (bz - az) + s.v[2];
-            const double d_sq = dx * dx + dy * dy + dz * dz;
-            if (d_sq < cutoff_sq_) {
-                hit(b, i, s.s[0] + ia, s.s[1] + ib, s.s[2] + ic, dx, dy, dz, d_sq);
+        const PairSink::Slots out = sink_.claim(stores_per_hit() * pending_);
+        std::uint32_t kept = 0;
+        for (std::uint32_t h = 0; h < pending_; ++h) {
+            const std::uint32_t b = pending_b_[h];
+            const ImageShift& s = *pending_shift_[h];
+            Hit p = make_hit(b, i, s.s[0] + ia, s.s[1] + ib, s.s[2] + ic, (x_[b] - ax) + s.v[0],
+                             (y_[b] - ay) + s.v[1], (z_[b] - az) + s.v[2], pending_d_sq_[h]);
+            if (counts(p, b)) {
+                PairSink::put(out, kept, p.i, p.j, p.sa, p.sb, p.sc, p.dx + 0.0, p.dy + 0.0,
+                              p.dz + 0.0);
+                pending_d_sq_[kept++] = p.d_sq;
             }
         }
+        PairSink::put_distances(out, pending_d_sq_, kept);
+        commit_hits(out, kept);
+        pending_ = 0;
     }
 
     /// The wrapped Cartesian position of atom a (the one the tests use).
@@ -564,6 +606,14 @@ class CandidateScanner {
     RangeScanInput range_input_;
     RangeKernel range_kernel_;
     std::uint64_t tests_ = 0;
+    // The hits of images() not yet stored, all of first atom pending_a_: the second atom, the
+    // image and d^2 of each. One chunk of images is tested into them at a time.
+    static constexpr std::uint32_t pending_chunk = 64, pending_room = 4 * pending_chunk;
+    std::uint32_t pending_ = 0;
+    std::uint32_t pending_a_ = 0;
+    std::uint32_t pending_b_[pending_room];
+    const ImageShift* pending_shift_[pending_room];
+    double pending_d_sq_[pending_room];
 };
 
 } // namespace tricell::detail
