@@ -472,10 +472,11 @@ Structure parse_cif(const std::string& text, const std::string& name, const Read
     const Eigen::Vector3d widths = box.perpendicular_widths();
     for (int k = 0; k < 3 && ops.size() > 1; ++k) {
         if (!(options.merge_distance < 0.5 * widths[k])) {
-            reader.fail(reader.line(x, 0), "the cell is ", widths[k], " Angstrom wide across ",
-                        "abc"[k], ", not more than twice ReadOptions::merge_distance = ",
-                        options.merge_distance, ", so the images of one site cannot be told "
-                        "apart; pass a smaller merge_distance");
+            reader.fail(
+                reader.line(x, 0), "the cell is ", widths[k], " Angstrom wide across ", "abc"[k],
+                ", not more than twice ReadOptions::merge_distance = ", options.merge_distance,
+                ", so the images of one site cannot be told "
+                "apart; pass a smaller merge_distance");
         }
     }
     const auto same_place = [&](const Eigen::Vector3d& s, const Eigen::Vector3d& t) {
