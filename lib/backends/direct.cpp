@@ -9,8 +9,9 @@
 // them by |T| into 64 buckets (a counting sort, stable). visit() then takes each pair (a, b) only
 // through the images that can bring it within the radius, |T| < radius + |x_b - x_a| (the exact
 // closest approach of that pair, |D| >= |T| - |x_b - x_a|): a prefix of the bucketed images, one
-// lookup per pair, tested in one loop without a branch on the outcome; the hits of one atom a are
-// stored together (CandidateScanner::images, flush_images). Candidates: N^2 x images,
+// lookup per pair, tested eight at a time from the images' translations as columns
+// (within_images()); the hits of one atom a are stored together (CandidateScanner::images,
+// flush_images). Candidates: N^2 x images,
 // so this pays while that stays below the grid's N x stencil range scans (the cost model's
 // choose_direct()).
 // The images depend only on the frame, periodicity, radius and reach, so a pooled backend keeps
@@ -132,15 +133,9 @@ class DirectBackend final : public Backend {
                 }
             }
         }
-        if (found_.size() == 1) { // S = 0 alone (a molecule): what the sort below gives
-            all_.assign(1, found_[0].image);
-            all_end_.fill(1);
-            positive_.clear();
-            positive_end_.fill(0);
-        } else { // counting sort by bucket (stable: S = 0 stays first of `all_`)
-            sort_by_bucket(false, all_, all_end_);
-            sort_by_bucket(true, positive_, positive_end_);
-        }
+        // A counting sort by bucket (stable: S = 0 stays first of `all_`).
+        sort_by_bucket(false, all_);
+        sort_by_bucket(true, positive_);
         images_h_ = h;
         for (int k = 0; k < 3; ++k) {
             images_periodic_[std::size_t(k)] = input.frame.periodic(k);
@@ -157,10 +152,11 @@ class DirectBackend final : public Backend {
         out.volume.assign(atoms_, atoms_ > 0 ? 1.0 / double(atoms_) : 1.0);
     }
 
-    double neighbours() const override { return double(atoms_) * double(all_.size()); }
+    double neighbours() const override { return double(atoms_) * double(all_.shifts.size()); }
 
     void visit(std::size_t begin, std::size_t end, CandidateScanner& scan) const override {
-        if (all_.size() == 1 && kernel_group * atoms_ + kernel_slack <= PairSink::block_size) {
+        if (all_.shifts.size() == 1 &&
+            kernel_group * atoms_ + kernel_slack <= PairSink::block_size) {
             // Only S = 0 can hold a pair (a molecule, or a cutoff short of every image), and the
             // atoms are few: they are one range, tested in vector blocks. Any group of atoms
             // against it fits one claim, so the pairs come atom by atom whatever the split
@@ -183,9 +179,9 @@ class DirectBackend final : public Backend {
             const Eigen::Vector3d xa = scan.position(ua);
             // a == b: never through S = 0; a half list takes one of S and -S
             if (half_) {
-                scan.images(ua, ua, positive_.data(), positive_end_[bucket_below(xa, xa, 0)]);
+                scan.images(ua, ua, positive_.columns(), positive_.end[bucket_below(xa, xa, 0)]);
             } else {
-                scan.images(ua, ua, all_.data() + 1, all_end_[bucket_below(xa, xa, 0)] - 1);
+                scan.images(ua, ua, all_.columns().from(1), all_.end[bucket_below(xa, xa, 0)] - 1);
             }
             for (std::size_t b = half_ ? a + 1 : 0; b < atoms_; ++b) {
                 if (b == a) {
@@ -194,7 +190,7 @@ class DirectBackend final : public Backend {
                 const auto ub = std::uint32_t(b);
                 const Eigen::Vector3d xb = scan.position(ub);
                 const double r = (xb - xa).norm();
-                scan.images(ua, ub, all_.data(), all_end_[bucket_below(xa, xb, r)]);
+                scan.images(ua, ub, all_.columns(), all_.end[bucket_below(xa, xb, r)]);
             }
             scan.flush_images();
         }
@@ -242,10 +238,19 @@ class DirectBackend final : public Backend {
         return bucket(limit * limit);
     }
 
+    // Images ordered by bucket of |T|, with their translations as columns too, and the end of
+    // each bucket's run.
+    struct Images {
+        std::vector<ImageShift> shifts;
+        std::vector<double> x, y, z;
+        std::array<std::size_t, buckets> end{};
+        ImageColumns columns() const { return {shifts.data(), x.data(), y.data(), z.data()}; }
+    };
+
     // The found images (only the positive ones if `positive_only`) ordered by bucket into
-    // `images`, and the end of each bucket's run into `ends`.
-    void sort_by_bucket(bool positive_only, std::vector<ImageShift>& images,
-                        std::array<std::size_t, buckets>& ends) const {
+    // `images`.
+    void sort_by_bucket(bool positive_only, Images& images) const {
+        std::array<std::size_t, buckets>& ends = images.end;
         ends.fill(0);
         for (const Found& f : found_) {
             if (!positive_only || f.positive) {
@@ -259,10 +264,17 @@ class DirectBackend final : public Backend {
             total += ends[q];
             ends[q] = total;
         }
-        images.resize(total);
+        images.shifts.resize(total);
+        images.x.resize(total);
+        images.y.resize(total);
+        images.z.resize(total);
         for (const Found& f : found_) {
             if (!positive_only || f.positive) {
-                images[next[f.bucket]++] = f.image;
+                const std::size_t k = next[f.bucket]++;
+                images.shifts[k] = f.image;
+                images.x[k] = f.image.v[0];
+                images.y[k] = f.image.v[1];
+                images.z[k] = f.image.v[2];
             }
         }
     }
@@ -285,8 +297,7 @@ class DirectBackend final : public Backend {
     };
     std::vector<Found> found_;
     // All images (S = 0 first) and the positive half, each ordered by bucket of |T|.
-    std::vector<ImageShift> all_, positive_;
-    std::array<std::size_t, buckets> all_end_{}, positive_end_{};
+    Images all_, positive_;
 };
 
 } // namespace

@@ -42,6 +42,16 @@ struct ImageShift {
     double v[3];
 };
 
+/// Images side by side with their translations as columns (the direct backend's, for
+/// within_images()): image k is shifts[k], its T is (x[k], y[k], z[k]).
+struct ImageColumns {
+    const ImageShift* shifts;
+    const double* x;
+    const double* y;
+    const double* z;
+    ImageColumns from(std::size_t k) const { return {shifts + k, x + k, y + k, z + k}; }
+};
+
 class CandidateScanner {
   public:
     /// Scans `atoms` (in `frame`'s box) for the pairs `rule` takes, of a full or a `half` list
@@ -184,13 +194,14 @@ class CandidateScanner {
 
     /// The pair (a, b) through each of shifts[0, count) (the direct backend: few atoms, many
     /// images). The same test, term for term, as pair() for each shift. The images are tested
-    /// without a branch on the outcome (each one is written to the pending hits and kept when it
-    /// is one); the pending hits of one atom a are stored together, with one claim and their
-    /// square roots taken at once, when they fill up, when a changes and at flush_images().
-    void images(std::uint32_t a, std::uint32_t b, const ImageShift* shifts, std::size_t count) {
+    /// a chunk at a time by within_images() (a vector kernel where the processor has one) into
+    /// the pending hits; the pending hits of one atom a are stored together, with one claim and
+    /// their square roots taken at once, when they fill up, when a changes and at
+    /// flush_images().
+    void images(std::uint32_t a, std::uint32_t b, const ImageColumns& shifts, std::size_t count) {
         if (subset_half_ && query_[a] == 0) {
             for (std::size_t k = 0; k < count && query_[b] != 0; ++k) {
-                pair(a, b, shifts[k]);
+                pair(a, b, shifts.shifts[k]);
             }
             return;
         }
@@ -202,26 +213,21 @@ class CandidateScanner {
             pending_a_ = a;
         }
         tests_ += count;
-        const double ax = x_[a], ay = y_[a], az = z_[a];
-        const double bx = x_[b], by = y_[b], bz = z_[b];
+        const double d0[3] = {x_[b] - x_[a], y_[b] - y_[a], z_[b] - z_[a]};
         for (std::size_t k0 = 0; k0 < count; k0 += pending_chunk) {
             if (pending_ + pending_chunk > pending_room) {
                 flush_images();
             }
-            const std::size_t k1 = std::min(count, k0 + pending_chunk);
-            std::uint32_t found = pending_;
-            for (std::size_t k = k0; k < k1; ++k) {
-                const ImageShift& s = shifts[k];
-                const double dx = (bx - ax) + s.v[0];
-                const double dy = (by - ay) + s.v[1];
-                const double dz = (bz - az) + s.v[2];
-                const double d_sq = dx * dx + dy * dy + dz * dz;
-                pending_b_[found] = b;
-                pending_shift_[found] = &s;
-                pending_d_sq_[found] = d_sq;
-                found += d_sq < cutoff_sq_ ? 1 : 0;
+            const std::uint32_t chunk =
+                std::uint32_t(std::min<std::size_t>(count - k0, pending_chunk));
+            const std::uint32_t found =
+                within_images(shifts.x + k0, shifts.y + k0, shifts.z + k0, chunk, d0, cutoff_sq_,
+                              pending_k_, pending_d_sq_ + pending_);
+            for (std::uint32_t h = 0; h < found; ++h) {
+                pending_b_[pending_ + h] = b;
+                pending_shift_[pending_ + h] = shifts.shifts + k0 + pending_k_[h];
             }
-            pending_ = found;
+            pending_ += found;
         }
     }
 
@@ -607,13 +613,15 @@ class CandidateScanner {
     RangeKernel range_kernel_;
     std::uint64_t tests_ = 0;
     // The hits of images() not yet stored, all of first atom pending_a_: the second atom, the
-    // image and d^2 of each. One chunk of images is tested into them at a time.
+    // image and d^2 of each. One chunk of images is tested into them at a time (pending_k_: the
+    // chunk's hits as within_images() gives them).
     static constexpr std::uint32_t pending_chunk = 64, pending_room = 4 * pending_chunk;
     std::uint32_t pending_ = 0;
     std::uint32_t pending_a_ = 0;
+    std::uint32_t pending_k_[pending_chunk + kernel_slack];
     std::uint32_t pending_b_[pending_room];
     const ImageShift* pending_shift_[pending_room];
-    double pending_d_sq_[pending_room];
+    double pending_d_sq_[pending_room + kernel_slack];
 };
 
 } // namespace tricell::detail

@@ -231,6 +231,31 @@ within_cutoff_group_avx512(const double* x, const double* y, const double* z, st
     return found;
 }
 
+__attribute__((target("avx512f,avx512vl"))) std::uint32_t
+within_images_avx512(const double* vx, const double* vy, const double* vz, std::uint32_t count,
+                     const double* d0, double cutoff_sq, std::uint32_t* hits, double* hit_d_sq) {
+    const __m512d cx = _mm512_set1_pd(d0[0]), cy = _mm512_set1_pd(d0[1]),
+                  cz = _mm512_set1_pd(d0[2]), cut = _mm512_set1_pd(cutoff_sq);
+    const __m256i step = _mm256_set1_epi32(8);
+    __m256i k8 = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+    std::uint32_t found = 0;
+    for (std::uint32_t k = 0; k < count; k += 8) {
+        const __mmask8 valid = count - k >= 8 ? __mmask8(0xff) : __mmask8((1u << (count - k)) - 1);
+        const __m512d dx = _mm512_add_pd(cx, _mm512_maskz_loadu_pd(valid, vx + k));
+        const __m512d dy = _mm512_add_pd(cy, _mm512_maskz_loadu_pd(valid, vy + k));
+        const __m512d dz = _mm512_add_pd(cz, _mm512_maskz_loadu_pd(valid, vz + k));
+        const __m512d d_sq = _mm512_add_pd(
+            _mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy)), _mm512_mul_pd(dz, dz));
+        const __mmask8 hit = _mm512_mask_cmp_pd_mask(valid, d_sq, cut, _CMP_LT_OQ);
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(hits + found),
+                            _mm256_maskz_compress_epi32(hit, k8));
+        _mm512_storeu_pd(hit_d_sq + found, _mm512_maskz_compress_pd(hit, d_sq));
+        found += std::uint32_t(__builtin_popcount(hit));
+        k8 = _mm256_add_epi32(k8, step);
+    }
+    return found;
+}
+
 __attribute__((target("avx"))) void square_roots_avx(const double* in, std::uint32_t count,
                                                      double* out) {
     std::uint32_t k = 0;
@@ -248,6 +273,20 @@ void square_roots_generic(const double* in, std::uint32_t count, double* out) {
     for (std::uint32_t k = 0; k < count; ++k) {
         out[k] = std::sqrt(in[k]);
     }
+}
+
+std::uint32_t within_images_generic(const double* vx, const double* vy, const double* vz,
+                                    std::uint32_t count, const double* d0, double cutoff_sq,
+                                    std::uint32_t* hits, double* hit_d_sq) {
+    std::uint32_t found = 0;
+    for (std::uint32_t k = 0; k < count; ++k) {
+        const double dx = d0[0] + vx[k], dy = d0[1] + vy[k], dz = d0[2] + vz[k];
+        const double d_sq = dx * dx + dy * dy + dz * dz;
+        hits[found] = k;
+        hit_d_sq[found] = d_sq;
+        found += d_sq < cutoff_sq ? 1 : 0;
+    }
+    return found;
 }
 
 using SquareRoots = void (*)(const double*, std::uint32_t, double*);
@@ -274,13 +313,16 @@ std::vector<DistanceKernel> distance_kernels() {
 #ifdef TRICELL_HAVE_AVX2_KERNEL
     __builtin_cpu_init();
     if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl")) {
-        out.push_back({"avx512", within_cutoff_one_avx512, within_cutoff_group_avx512});
+        out.push_back(
+            {"avx512", within_cutoff_one_avx512, within_cutoff_group_avx512, within_images_avx512});
     }
     if (__builtin_cpu_supports("avx2")) {
-        out.push_back({"avx2", within_cutoff_one_avx2, within_cutoff_group_avx2});
+        out.push_back(
+            {"avx2", within_cutoff_one_avx2, within_cutoff_group_avx2, within_images_generic});
     }
 #endif
-    out.push_back({"generic", within_cutoff_one_generic, within_cutoff_group_generic});
+    out.push_back(
+        {"generic", within_cutoff_one_generic, within_cutoff_group_generic, within_images_generic});
     return out;
 }
 
@@ -295,6 +337,12 @@ std::uint32_t within_cutoff_group(const double* x, const double* y, const double
                                   const double* az, std::uint32_t group, const double* shift,
                                   double cutoff_sq, std::uint32_t* hits, double* hit_d_sq) {
     return chosen.group(x, y, z, count, ax, ay, az, group, shift, cutoff_sq, hits, hit_d_sq);
+}
+
+std::uint32_t within_images(const double* vx, const double* vy, const double* vz,
+                            std::uint32_t count, const double* d0, double cutoff_sq,
+                            std::uint32_t* hits, double* hit_d_sq) {
+    return chosen.images(vx, vy, vz, count, d0, cutoff_sq, hits, hit_d_sq);
 }
 
 void square_roots(const double* in, std::uint32_t count, double* out) {

@@ -44,7 +44,16 @@ std::uint32_t within_cutoff_group(const double* x, const double* y, const double
                                   const double* az, std::uint32_t group, const double* shift,
                                   double cutoff_sq, std::uint32_t* hits, double* hit_d_sq);
 
-/// One instruction set's within_cutoff() and within_cutoff_group().
+/// The direct backend's test of one pair through many images: for k in [0, count), with
+/// D = (d0[0] + vx[k], d0[1] + vy[k], d0[2] + vz[k]) (d0 = x_b - x_a, so D is the (x_b - x_a) + T
+/// of the other kernels): if |D|^2 < cutoff_sq, appends k to hits and |D|^2 to hit_d_sq.
+/// Returns the number of hits; hits and hit_d_sq need count + kernel_slack slots.
+std::uint32_t within_images(const double* vx, const double* vy, const double* vz,
+                            std::uint32_t count, const double* d0, double cutoff_sq,
+                            std::uint32_t* hits, double* hit_d_sq);
+
+/// One instruction set's within_cutoff(), within_cutoff_group() and within_images() (AVX2 has
+/// no within_images() of its own: the portable loop).
 struct DistanceKernel {
     const char* name; ///< "avx512", "avx2" or "generic"
     std::uint32_t (*one)(const double*, const double*, const double*, std::uint32_t, double, double,
@@ -52,6 +61,8 @@ struct DistanceKernel {
     std::uint32_t (*group)(const double*, const double*, const double*, std::uint32_t,
                            const double*, const double*, const double*, std::uint32_t,
                            const double*, double, std::uint32_t*, double*);
+    std::uint32_t (*images)(const double*, const double*, const double*, std::uint32_t,
+                            const double*, double, std::uint32_t*, double*);
 };
 
 /// Every kernel this processor can run, fastest first: the first is the one within_cutoff()

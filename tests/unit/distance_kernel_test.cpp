@@ -62,6 +62,56 @@ TEST(DistanceKernel, EveryKernelMatchesThePortableOneBitForBit) {
     }
 }
 
+// within_images() of every kernel agrees bit for bit with the portable one and with
+// D = (x_b - x_a) + T term for term, for every count (the vector groups and the masked tail),
+// with an image exactly at the cutoff (no hit) and one of length zero.
+TEST(DistanceKernel, EveryImagesKernelMatchesThePortableOneBitForBit) {
+    const auto kernels = distance_kernels();
+    for (const auto& kernel : kernels) {
+        SCOPED_TRACE(kernel.name);
+        std::mt19937_64 rng(29);
+        std::uniform_real_distribution<double> u(-3, 3);
+        for (int trial = 0; trial < 2000; ++trial) {
+            const std::uint32_t count = std::uint32_t(trial) % (kernel_block + 1);
+            const double a[3] = {u(rng), u(rng), u(rng)}, b[3] = {u(rng), u(rng), u(rng)};
+            const double d0[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+            std::vector<double> x(count), y(count), z(count);
+            for (std::uint32_t k = 0; k < count; ++k) {
+                x[k] = u(rng), y[k] = u(rng), z[k] = u(rng);
+            }
+            if (count > 3) {
+                x[1] = 2.0 - d0[0], y[1] = -d0[1], z[1] = -d0[2]; // |D| = 2 up to rounding
+                x[2] = -d0[0], y[2] = -d0[1], z[2] = -d0[2];      // D = 0
+            }
+            const double cutoff_sq = 4.0;
+            std::uint32_t hits_a[kernel_block + kernel_slack], hits_b[kernel_block + kernel_slack];
+            double d_a[kernel_block + kernel_slack], d_b[kernel_block + kernel_slack];
+            const std::uint32_t found_a =
+                kernel.images(x.data(), y.data(), z.data(), count, d0, cutoff_sq, hits_a, d_a);
+            const std::uint32_t found_b = kernels.back().images(x.data(), y.data(), z.data(), count,
+                                                                d0, cutoff_sq, hits_b, d_b);
+            ASSERT_EQ(found_a, found_b) << "trial " << trial;
+            std::uint32_t expected = 0;
+            for (std::uint32_t k = 0; k < count; ++k) {
+                const double dx = (b[0] - a[0]) + x[k], dy = (b[1] - a[1]) + y[k],
+                             dz = (b[2] - a[2]) + z[k];
+                const double d_sq = dx * dx + dy * dy + dz * dz;
+                if (d_sq < cutoff_sq) {
+                    ASSERT_LT(expected, found_a);
+                    ASSERT_EQ(hits_a[expected], k);
+                    ASSERT_EQ(d_a[expected], d_sq);
+                    ++expected;
+                }
+            }
+            ASSERT_EQ(found_a, expected) << "trial " << trial;
+            for (std::uint32_t h = 0; h < found_a; ++h) {
+                ASSERT_EQ(hits_a[h], hits_b[h]);
+                ASSERT_EQ(d_a[h], d_b[h]);
+            }
+        }
+    }
+}
+
 // square_roots() (AVX where the processor has it) is std::sqrt value for value, for every count
 // (the vector groups and the tail) and for zeros, denormals, huge values and infinity.
 TEST(DistanceKernel, SquareRootsMatchStdSqrtBitForBit) {
