@@ -64,7 +64,7 @@ TEST(DistanceKernel, EveryKernelMatchesThePortableOneBitForBit) {
 
 // within_images() of every kernel agrees bit for bit with the portable one and with
 // D = (x_b - x_a) + T term for term, for every count (the vector groups and the masked tail),
-// with an image exactly at the cutoff (no hit) and one of length zero.
+// with an image at the cutoff up to rounding and one of length zero.
 TEST(DistanceKernel, EveryImagesKernelMatchesThePortableOneBitForBit) {
     const auto kernels = distance_kernels();
     for (const auto& kernel : kernels) {
