@@ -194,10 +194,11 @@ class CandidateScanner {
 
     /// The pair (a, b) through each of shifts[0, count) (the direct backend: few atoms, many
     /// images). The same test, term for term, as pair() for each shift. The images are tested
-    /// a chunk at a time by within_images() (a vector kernel where the processor has one) into
-    /// the pending hits; the pending hits of one atom a are stored together, with one claim and
-    /// their square roots taken at once, when they fill up, when a changes and at
-    /// flush_images().
+    /// a chunk at a time by within_images() (a vector kernel where the processor has one), and
+    /// each hit is written straight into the slots claimed for atom a, from what the pair (a, b)
+    /// shares (i, j, the images' difference) and the image's s and T. The pairs of one atom a
+    /// take one claim and their square roots are taken together, when the claim fills up, when a
+    /// changes and at flush_images().
     void images(std::uint32_t a, std::uint32_t b, const ImageColumns& shifts, std::size_t count) {
         if (subset_half_ && query_[a] == 0) {
             for (std::size_t k = 0; k < count && query_[b] != 0; ++k) {
@@ -208,55 +209,65 @@ class CandidateScanner {
         if (!wants(a)) {
             return;
         }
-        if (a != pending_a_) {
+        if (a != images_a_) {
             flush_images();
-            pending_a_ = a;
+            images_a_ = a;
         }
         tests_ += count;
         const double d0[3] = {x_[b] - x_[a], y_[b] - y_[a], z_[b] - z_[a]};
-        for (std::size_t k0 = 0; k0 < count; k0 += pending_chunk) {
-            if (pending_ + pending_chunk > pending_room) {
-                flush_images();
-            }
+        const std::uint32_t i = index_[a], j = index_[b];
+        const int ia = image_[3 * a], ib = image_[3 * a + 1], ic = image_[3 * a + 2];
+        const int ja = image_[3 * b], jb = image_[3 * b + 1], jc = image_[3 * b + 2];
+        for (std::size_t k0 = 0; k0 < count; k0 += images_chunk) {
             const std::uint32_t chunk =
-                std::uint32_t(std::min<std::size_t>(count - k0, pending_chunk));
+                std::uint32_t(std::min<std::size_t>(count - k0, images_chunk));
+            std::uint32_t k[images_chunk + kernel_slack];
             const std::uint32_t found =
-                within_images(shifts.x + k0, shifts.y + k0, shifts.z + k0, chunk, d0, cutoff_sq_,
-                              pending_k_, pending_d_sq_ + pending_);
-            for (std::uint32_t h = 0; h < found; ++h) {
-                pending_b_[pending_ + h] = b;
-                pending_shift_[pending_ + h] = shifts.shifts + k0 + pending_k_[h];
+                within_images(shifts.x + k0, shifts.y + k0, shifts.z + k0, chunk, d0, cutoff_sq_, k,
+                              images_d_sq_ + images_kept_);
+            if (found == 0) {
+                continue;
             }
-            pending_ += found;
+            if (images_kept_ + found > images_room_) {
+                // a fresh claim: the hits' d^2 move to the front of images_d_sq_
+                const std::uint32_t from = images_kept_;
+                flush_images();
+                std::copy(images_d_sq_ + from, images_d_sq_ + from + found, images_d_sq_);
+                images_out_ = sink_.claim(stores_per_hit() * images_claim);
+                images_room_ = images_claim;
+            }
+            std::uint32_t n = images_kept_;
+            for (std::uint32_t h = 0; h < found; ++h) {
+                const ImageShift& s = shifts.shifts[k0 + k[h]];
+                Hit p{i,
+                      j,
+                      (s.s[0] + ia) - ja,
+                      (s.s[1] + ib) - jb,
+                      (s.s[2] + ic) - jc,
+                      d0[0] + s.v[0],
+                      d0[1] + s.v[1],
+                      d0[2] + s.v[2],
+                      images_d_sq_[images_kept_ + h]};
+                if (counts(p, b)) {
+                    PairSink::put(images_out_, n, p.i, p.j, p.sa, p.sb, p.sc, p.dx + 0.0,
+                                  p.dy + 0.0, p.dz + 0.0);
+                    images_d_sq_[n++] = p.d_sq;
+                }
+            }
+            images_kept_ = n;
         }
     }
 
-    /// Stores the pending hits of images() (a backend calling images() calls this after each
-    /// atom a, so that an atom's pairs stay within its work unit).
+    /// Stores the pairs images() wrote for atom a: their distances from the d^2 kept, then the
+    /// commit (a backend calling images() calls this after each atom a, so that an atom's pairs
+    /// stay within its work unit).
     void flush_images() {
-        if (pending_ == 0) {
+        if (images_room_ == 0) {
             return;
         }
-        const std::uint32_t a = pending_a_;
-        const double ax = x_[a], ay = y_[a], az = z_[a];
-        const std::uint32_t i = index_[a];
-        const int ia = image_[3 * a], ib = image_[3 * a + 1], ic = image_[3 * a + 2];
-        const PairSink::Slots out = sink_.claim(stores_per_hit() * pending_);
-        std::uint32_t kept = 0;
-        for (std::uint32_t h = 0; h < pending_; ++h) {
-            const std::uint32_t b = pending_b_[h];
-            const ImageShift& s = *pending_shift_[h];
-            Hit p = make_hit(b, i, s.s[0] + ia, s.s[1] + ib, s.s[2] + ic, (x_[b] - ax) + s.v[0],
-                             (y_[b] - ay) + s.v[1], (z_[b] - az) + s.v[2], pending_d_sq_[h]);
-            if (counts(p, b)) {
-                PairSink::put(out, kept, p.i, p.j, p.sa, p.sb, p.sc, p.dx + 0.0, p.dy + 0.0,
-                              p.dz + 0.0);
-                pending_d_sq_[kept++] = p.d_sq;
-            }
-        }
-        PairSink::put_distances(out, pending_d_sq_, kept);
-        commit_hits(out, kept);
-        pending_ = 0;
+        PairSink::put_distances(images_out_, images_d_sq_, images_kept_);
+        commit_hits(images_out_, images_kept_);
+        images_kept_ = images_room_ = 0;
     }
 
     /// The wrapped Cartesian position of atom a (the one the tests use).
@@ -612,16 +623,14 @@ class CandidateScanner {
     RangeScanInput range_input_;
     RangeKernel range_kernel_;
     std::uint64_t tests_ = 0;
-    // The hits of images() not yet stored, all of first atom pending_a_: the second atom, the
-    // image and d^2 of each. One chunk of images is tested into them at a time (pending_k_: the
-    // chunk's hits as within_images() gives them).
-    static constexpr std::uint32_t pending_chunk = 64, pending_room = 4 * pending_chunk;
-    std::uint32_t pending_ = 0;
-    std::uint32_t pending_a_ = 0;
-    std::uint32_t pending_k_[pending_chunk + kernel_slack];
-    std::uint32_t pending_b_[pending_room];
-    const ImageShift* pending_shift_[pending_room];
-    double pending_d_sq_[pending_room + kernel_slack];
+    // images(): the atom a of the pairs written since the last flush_images(), the slots claimed
+    // for them (images_room_ pairs, 0: none claimed), how many are written and their d^2. A chunk
+    // of images is tested at a time, and its hits always fit a fresh claim.
+    static constexpr std::uint32_t images_chunk = 64, images_claim = 4 * images_chunk;
+    std::uint32_t images_a_ = 0;
+    PairSink::Slots images_out_{};
+    std::uint32_t images_kept_ = 0, images_room_ = 0;
+    double images_d_sq_[images_claim + images_chunk + kernel_slack];
 };
 
 } // namespace tricell::detail
