@@ -232,7 +232,9 @@ class CandidateScanner {
                 // a fresh claim: the hits' d^2 move to the front of images_d_sq_
                 const std::uint32_t from = images_kept_;
                 flush_images();
-                std::copy(images_d_sq_ + from, images_d_sq_ + from + found, images_d_sq_);
+                if (from != 0) {
+                    std::copy(images_d_sq_ + from, images_d_sq_ + from + found, images_d_sq_);
+                }
                 images_out_ = sink_.claim(stores_per_hit() * images_claim);
                 images_room_ = images_claim;
             }
